@@ -1,0 +1,66 @@
+#include "cl/cl_error.h"
+
+#include <fmt/format.h>
+
+namespace voxr {
+
+const char* cl_status_name(cl_int status) {
+  switch (status) {
+#define VOXR_CASE(x) \
+  case x: return #x;
+    VOXR_CASE(CL_SUCCESS)
+    VOXR_CASE(CL_DEVICE_NOT_FOUND)
+    VOXR_CASE(CL_DEVICE_NOT_AVAILABLE)
+    VOXR_CASE(CL_COMPILER_NOT_AVAILABLE)
+    VOXR_CASE(CL_MEM_OBJECT_ALLOCATION_FAILURE)
+    VOXR_CASE(CL_OUT_OF_RESOURCES)
+    VOXR_CASE(CL_OUT_OF_HOST_MEMORY)
+    VOXR_CASE(CL_PROFILING_INFO_NOT_AVAILABLE)
+    VOXR_CASE(CL_MEM_COPY_OVERLAP)
+    VOXR_CASE(CL_BUILD_PROGRAM_FAILURE)
+    VOXR_CASE(CL_MAP_FAILURE)
+    VOXR_CASE(CL_INVALID_VALUE)
+    VOXR_CASE(CL_INVALID_DEVICE_TYPE)
+    VOXR_CASE(CL_INVALID_PLATFORM)
+    VOXR_CASE(CL_INVALID_DEVICE)
+    VOXR_CASE(CL_INVALID_CONTEXT)
+    VOXR_CASE(CL_INVALID_QUEUE_PROPERTIES)
+    VOXR_CASE(CL_INVALID_COMMAND_QUEUE)
+    VOXR_CASE(CL_INVALID_HOST_PTR)
+    VOXR_CASE(CL_INVALID_MEM_OBJECT)
+    VOXR_CASE(CL_INVALID_BINARY)
+    VOXR_CASE(CL_INVALID_BUILD_OPTIONS)
+    VOXR_CASE(CL_INVALID_PROGRAM)
+    VOXR_CASE(CL_INVALID_PROGRAM_EXECUTABLE)
+    VOXR_CASE(CL_INVALID_KERNEL_NAME)
+    VOXR_CASE(CL_INVALID_KERNEL_DEFINITION)
+    VOXR_CASE(CL_INVALID_KERNEL)
+    VOXR_CASE(CL_INVALID_ARG_INDEX)
+    VOXR_CASE(CL_INVALID_ARG_VALUE)
+    VOXR_CASE(CL_INVALID_ARG_SIZE)
+    VOXR_CASE(CL_INVALID_KERNEL_ARGS)
+    VOXR_CASE(CL_INVALID_WORK_DIMENSION)
+    VOXR_CASE(CL_INVALID_WORK_GROUP_SIZE)
+    VOXR_CASE(CL_INVALID_WORK_ITEM_SIZE)
+    VOXR_CASE(CL_INVALID_GLOBAL_OFFSET)
+    VOXR_CASE(CL_INVALID_EVENT_WAIT_LIST)
+    VOXR_CASE(CL_INVALID_EVENT)
+    VOXR_CASE(CL_INVALID_OPERATION)
+    VOXR_CASE(CL_INVALID_BUFFER_SIZE)
+    VOXR_CASE(CL_INVALID_GLOBAL_WORK_SIZE)
+    VOXR_CASE(CL_PLATFORM_NOT_FOUND_KHR)
+#undef VOXR_CASE
+    default: return "unknown OpenCL status";
+  }
+}
+
+std::string describe_cl_error(const cl::Error& e, const std::string& context) {
+  std::string msg = fmt::format("{} failed: {} ({})", e.what(), cl_status_name(e.err()), e.err());
+  if (!context.empty()) msg += " while " + context;
+  if (e.err() == CL_MEM_OBJECT_ALLOCATION_FAILURE || e.err() == CL_OUT_OF_RESOURCES ||
+      e.err() == CL_OUT_OF_HOST_MEMORY || e.err() == CL_INVALID_BUFFER_SIZE)
+    msg += "; the device ran out of memory: use a smaller grid (--res), fewer channels or another device";
+  return msg;
+}
+
+}  // namespace voxr

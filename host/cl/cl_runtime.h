@@ -1,0 +1,72 @@
+// The one place that talks to raw OpenCL: a context and profiling queue on one device, programs built
+// from the embedded kernel sources (or $VOXR_KERNEL_DIR) with generated defines, named and profiled
+// launches, and checked buffers. Every OpenCL object is held by the C++ wrapper's RAII handles.
+#pragma once
+
+#include <CL/opencl.hpp>
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cl/cl_error.h"
+#include "cl/device.h"
+#include "cl/profiler.h"
+#include "core/error.h"
+
+namespace voxr {
+
+using Defines = std::vector<std::pair<std::string, std::string>>;
+
+class ClRuntime {
+ public:
+  explicit ClRuntime(const std::string& device_selector = "");
+  explicit ClRuntime(const DeviceInfo& device);
+
+  const DeviceInfo& device() const { return device_; }
+  cl::Context& context() { return context_; }
+  cl::CommandQueue& queue() { return queue_; }
+  Profiler& profiler() { return profiler_; }
+
+  // Kernel `name` from kernel file `file` (e.g. "vox_raster.cl") built with `defines`. Programs are
+  // cached per (file, defines); a failed build throws voxr::Error with the full build log.
+  cl::Kernel kernel(const std::string& file, const std::string& name, const Defines& defines = {});
+
+  // Sets the arguments in order and enqueues `global` work items (rounded up to `local`), recording the
+  // event under `name`. Debug builds finish the queue and check the status after every launch.
+  template <typename... Args>
+  void launch(const std::string& name, cl::Kernel& kernel, size_t global, size_t local, const Args&... args) {
+    if (global == 0) return;
+    try {
+      cl_uint index = 0;
+      (kernel.setArg(index++, args), ...);
+      enqueue(name, kernel, global, local);
+    } catch (const cl::Error& e) {
+      throw Error(describe_cl_error(e, "launching kernel " + name));
+    }
+  }
+
+  // A device buffer of `bytes` (at least 1). Throws voxr::Error naming `what` when it exceeds the
+  // device's largest allocation.
+  cl::Buffer buffer(uint64_t bytes, const std::string& what, cl_mem_flags flags = CL_MEM_READ_WRITE);
+  void fill_zero(cl::Buffer& buffer, uint64_t bytes, const std::string& name);
+  void upload(cl::Buffer& buffer, const void* data, uint64_t bytes, const std::string& name);
+  void download(const cl::Buffer& buffer, void* data, uint64_t bytes, const std::string& name,
+                uint64_t offset = 0);
+  // Waits for the queue, turns asynchronous failures into voxr::Error, resolves profiling events.
+  void finish(const std::string& context = "running kernels");
+
+ private:
+  void enqueue(const std::string& name, cl::Kernel& kernel, size_t global, size_t local);
+  std::string load_source(const std::string& file) const;
+
+  DeviceInfo device_;
+  cl::Context context_;
+  cl::CommandQueue queue_;
+  Profiler profiler_;
+  std::map<std::string, cl::Program> programs_;
+};
+
+}  // namespace voxr

@@ -1,0 +1,40 @@
+// Per-kernel (and per-transfer) timings from OpenCL profiling events: count, total and median in ms.
+#pragma once
+
+#include <CL/opencl.hpp>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace voxr {
+
+class Profiler {
+ public:
+  struct Stat {
+    size_t count = 0;
+    double total_ms = 0.0;
+    double median_ms = 0.0;
+  };
+
+  // Remembers an event; its time is read by resolve() once the queue has finished.
+  void record(const std::string& name, const cl::Event& event) { pending_.push_back({name, event}); }
+  void resolve();
+  void clear();
+
+  std::map<std::string, Stat> stats() const;
+  double total_ms(const std::string& name) const;  // 0 when never recorded
+  double sum_ms() const;                            // every kernel and transfer
+  // Aligned text table, one row per name, sorted by total time.
+  std::string table() const;
+
+ private:
+  struct Pending {
+    std::string name;
+    cl::Event event;
+  };
+  std::vector<Pending> pending_;
+  std::map<std::string, std::vector<double>> times_;
+};
+
+}  // namespace voxr

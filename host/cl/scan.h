@@ -1,0 +1,22 @@
+// Exclusive prefix sum of any length on the device (kernels/scan.cl): tiles, recursive tile totals, add.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "cl/cl_runtime.h"
+
+namespace voxr {
+
+enum class ScanKind {
+  kUintToUlong,     // uint counts -> ulong offsets (copy offsets)
+  kPopcountToUint,  // uint words -> uint rank of each word's first set bit (voxel ranks)
+  kUlongToUlong,    // ulong -> ulong (the recursion over tile totals)
+};
+
+// Scans `n` elements of `in` into `out` and returns the grand total (exact in 64 bits even where `out`
+// holds 32-bit values). Blocks until the total is known.
+uint64_t exclusive_scan(ClRuntime& cl, ScanKind kind, const cl::Buffer& in, cl::Buffer& out, uint64_t n,
+                        const std::string& name);
+
+}  // namespace voxr

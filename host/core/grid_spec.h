@@ -1,0 +1,48 @@
+// Where the voxel grid sits in the world: an orthonormal frame (the slicing axis is the frame's z), the
+// world position of the grid's corner, the voxel edge length and the integer dimensions. Voxel (i,j,k) is
+// the closed box [i,i+1]x[j,j+1]x[k,k+1] in grid units; linear index = (k*dims.y + j)*dims.x + i, 64-bit.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include "core/triangle_soup.h"
+
+namespace voxr {
+
+struct GridSpec {
+  glm::mat3 axes{1.0f};  // columns: the grid's x, y, z axes in world space (orthonormal)
+  glm::vec3 origin{0.0f};  // world position of the grid's corner (0,0,0)
+  float voxel_size = 1.0f;
+  glm::uvec3 dims{1, 1, 1};
+
+  uint64_t voxel_count() const { return uint64_t(dims.x) * dims.y * dims.z; }
+  uint64_t linear_index(uint32_t i, uint32_t j, uint32_t k) const {
+    return (uint64_t(k) * dims.y + j) * dims.x + i;
+  }
+  // World -> grid units, as the rows of a 3x4 affine matrix (the form the kernels read).
+  std::array<float, 12> world_to_grid() const;
+  glm::vec3 to_grid(const glm::vec3& world) const;
+  glm::vec3 voxel_center_world(uint32_t i, uint32_t j, uint32_t k) const;
+};
+
+// How the user asked for the grid. Exactly one of `resolution` and `dims` is used; `bounds` defaults to
+// the scene bounds grown by a margin.
+struct GridRequest {
+  uint32_t resolution = 256;          // voxels along the longest axis of the bounds
+  std::optional<glm::uvec3> dims;     // exact dimensions; voxels stay cubes, the bounds grow to fit
+  std::optional<Bounds> bounds;       // world box to voxelize
+  float margin_voxels = 0.5f;         // margin added around fitted bounds, in voxels
+};
+
+// Largest dimension along one axis; 64-bit indices keep 2048^3 and beyond addressable.
+constexpr uint32_t kMaxGridDim = 16384;
+
+// Fits an axis-aligned grid of cubic voxels to `scene_bounds` as `request` says. Throws voxr::Error for
+// empty bounds, zero or absurd sizes.
+GridSpec fit_grid(const Bounds& scene_bounds, const GridRequest& request);
+
+}  // namespace voxr

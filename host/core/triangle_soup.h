@@ -1,0 +1,54 @@
+// The scene as the kernels read it: vertex positions (float4, w = 1) and triangles (uint4: three vertex
+// indices and the material id in w). Loaders and generators all produce this; nothing else is uploaded.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace voxr {
+
+struct Bounds {
+  glm::vec3 lo{std::numeric_limits<float>::max()};
+  glm::vec3 hi{-std::numeric_limits<float>::max()};
+
+  bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+  void extend(const glm::vec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  void extend(const Bounds& b) {
+    if (!b.empty()) {
+      extend(b.lo);
+      extend(b.hi);
+    }
+  }
+  glm::vec3 size() const { return empty() ? glm::vec3(0) : hi - lo; }
+};
+
+struct TriangleSoup {
+  std::vector<glm::vec4> positions;   // w = 1
+  std::vector<glm::uvec4> triangles;  // xyz: indices into positions, w: material id
+
+  size_t triangle_count() const { return triangles.size(); }
+  size_t vertex_count() const { return positions.size(); }
+  bool empty() const { return triangles.empty(); }
+
+  // Bounds of the vertices that triangles use.
+  Bounds bounds() const;
+  // Appends `other` with every position transformed by `transform`; its material ids are replaced by
+  // `material` unless `material` is kKeepMaterial.
+  static constexpr uint32_t kKeepMaterial = 0xffffffffu;
+  void append(const TriangleSoup& other, const glm::mat4& transform = glm::mat4(1.0f),
+              uint32_t material = kKeepMaterial);
+};
+
+// Throws voxr::Error naming `source` when the soup is empty, an index is out of range or a vertex that a
+// triangle uses is NaN or infinite. Returns the number of degenerate (zero-area) triangles, which are kept:
+// conservative voxelization treats them as the segment or point they are.
+size_t validate_soup(const TriangleSoup& soup, const std::string& source);
+
+}  // namespace voxr

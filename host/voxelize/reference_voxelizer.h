@@ -1,0 +1,22 @@
+// The exact CPU reference for the slice voxelizer: for every triangle, every voxel of its bounding box is
+// tested on its own with the full predicate — the 13-axis triangle/box separating-axis test in 128-bit
+// integers (conservative), or the pixel-centre/top-left/slab-depth rule (center) — on the same snapped
+// vertices the kernels use. Slow and simple on purpose: it shares no loop structure with the kernels.
+#pragma once
+
+#include "core/grid_spec.h"
+#include "core/triangle_soup.h"
+#include "voxelize/raster_mode.h"
+#include "voxelize/snapped_triangle.h"
+#include "voxelize/voxel_grid.h"
+
+namespace voxr {
+
+VoxelGrid reference_voxelize(const TriangleSoup& soup, const GridSpec& grid, RasterMode mode,
+                             ChannelSet channels);
+
+// The single-voxel predicates, exposed for tests.
+bool reference_conservative_overlap(const SnappedTriangle& t, int64_t i, int64_t j, int64_t k);
+bool reference_center_hit(const SnappedTriangle& t, int64_t i, int64_t j, int64_t k);
+
+}  // namespace voxr

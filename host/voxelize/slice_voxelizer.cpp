@@ -1,0 +1,214 @@
+#include "voxelize/slice_voxelizer.h"
+
+#include <bit>
+#include <chrono>
+
+#include "cl/scan.h"
+#include "voxelize/triangle_splitter.h"
+#include "voxr_layout.h"
+
+namespace voxr {
+
+static_assert(sizeof(VoxGridParams) == 80, "VoxGridParams layout changed: update the kernels");
+static_assert(sizeof(VoxCopy) == 8, "VoxCopy must stay 8 bytes");
+static_assert(sizeof(glm::vec4) == sizeof(cl_float4) && sizeof(glm::uvec4) == sizeof(cl_uint4));
+
+namespace {
+
+constexpr size_t kGroup = 64;
+
+// Profiled milliseconds per name accumulated since `before`.
+std::map<std::string, double> profile_since(const Profiler& profiler,
+                                            const std::map<std::string, Profiler::Stat>& before) {
+  std::map<std::string, double> out;
+  for (const auto& [name, s] : profiler.stats()) {
+    const auto it = before.find(name);
+    const double prev = it == before.end() ? 0.0 : it->second.total_ms;
+    if (s.total_ms - prev > 0.0) out[name] = s.total_ms - prev;
+  }
+  return out;
+}
+
+bool is_prefixed(const std::string& name, const char* prefix) { return name.rfind(prefix, 0) == 0; }
+
+}  // namespace
+
+DeviceMesh::DeviceMesh(ClRuntime& cl, const TriangleSoup& soup) {
+  if (soup.triangle_count() > 0xffffffffull) fail("{} triangles are more than 2^32-1", soup.triangle_count());
+  triangle_count_ = uint32_t(soup.triangle_count());
+  const uint64_t pos_bytes = soup.positions.size() * sizeof(glm::vec4);
+  const uint64_t tri_bytes = soup.triangles.size() * sizeof(glm::uvec4);
+  positions_ = cl.buffer(pos_bytes, "vertex positions", CL_MEM_READ_ONLY);
+  triangles_ = cl.buffer(tri_bytes, "triangle indices", CL_MEM_READ_ONLY);
+  cl.upload(positions_, soup.positions.data(), pos_bytes, "upload positions");
+  cl.upload(triangles_, soup.triangles.data(), tri_bytes, "upload triangles");
+}
+
+VoxelGrid SliceVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, const VoxelizeOptions& options,
+                              VoxelizeStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  uint64_t split = 0;
+  const std::optional<TriangleSoup> pieces = split_oversized_triangles(soup, grid, &split);
+  cl_.finish();
+  const auto before = cl_.profiler().stats();
+  const DeviceMesh mesh(cl_, pieces ? *pieces : soup);
+  cl_.finish("uploading the mesh");
+  double upload_ms = 0.0;
+  for (const auto& [name, ms] : profile_since(cl_.profiler(), before)) upload_ms += ms;
+  VoxelGrid result = run(mesh, grid, options, stats);
+  if (stats) {
+    stats->triangles_split = split;
+    stats->upload_ms = upload_ms;
+    stats->wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  return result;
+}
+
+VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                              VoxelizeStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  auto progress = [&](const char* stage) {
+    if (options.progress) options.progress(stage);
+  };
+  cl_.finish();
+  const auto before = cl_.profiler().stats();
+  VOXR_CHECK(options.rows_per_copy >= 1);
+
+  VoxGridParams params{};
+  const std::array<float, 12> m = grid.world_to_grid();
+  std::copy(m.begin(), m.end(), params.world_to_grid);
+  for (int a = 0; a < 3; ++a) params.dims[a] = grid.dims[a];
+  params.rows_per_copy = options.rows_per_copy;
+  params.triangle_count = mesh.triangle_count();
+
+  const uint64_t voxels = grid.voxel_count();
+  const uint64_t words = (voxels + 31) / 32;
+  const uint64_t tris = mesh.triangle_count();
+  const Defines mode = {{"VOXR_MODE", std::to_string(int(options.mode))}, {"WG_SIZE", std::to_string(kGroup)}};
+  uint64_t device_bytes = 0;
+  auto alloc = [&](uint64_t bytes, const std::string& what) {
+    device_bytes += bytes;
+    return cl_.buffer(bytes, what);
+  };
+
+  progress("setup");
+  cl::Buffer occ = alloc(words * 4, fmt::format("the occupancy bits of a {}x{}x{} grid", grid.dims.x,
+                                                grid.dims.y, grid.dims.z));
+  cl_.fill_zero(occ, words * 4, "clear");
+  cl::Buffer counts = alloc(tris * 4, "copy counts");
+  cl::Buffer info = alloc(tris * 8, "copy info");
+  cl::Buffer offsets = alloc(tris * 8, "copy offsets");
+  cl::Buffer too_large = alloc(4, "split check");
+  cl::Buffer dummy = alloc(4, "unused channel");
+  cl_.fill_zero(too_large, 4, "clear");
+  cl::Kernel setup = cl_.kernel("vox_setup.cl", "vox_setup", mode);
+  cl_.launch("setup", setup, tris, kGroup, params, mesh.positions(), mesh.triangles(), counts, info, too_large);
+  const uint64_t copies = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, tris, "scan");
+  cl_uint oversized = 0;
+  cl_.download(too_large, &oversized, 4, "split check");
+  if (oversized)
+    throw InternalError(fmt::format("{} triangles exceed {} voxels; split_oversized_triangles must run first",
+                                    oversized, VOXR_MAX_TRIANGLE_EXTENT));
+
+  const uint64_t batch = std::max<uint64_t>(1, std::min(copies, options.copy_budget_bytes / sizeof(VoxCopy)));
+  const uint64_t batches = copies == 0 ? 0 : (copies + batch - 1) / batch;
+  cl::Buffer records = alloc(batch * sizeof(VoxCopy), "copy records");
+  cl::Kernel expand = cl_.kernel("vox_expand.cl", "vox_expand", mode);
+  // Expands and rasterizes every batch of copies with `raster` (whose arguments after the copies are
+  // given); a single batch is expanded once and reused by the second pass.
+  bool expanded = false;
+  auto raster_all = [&](const char* name, cl::Kernel& raster, const cl::Buffer& ranks, const cl::Buffer& count,
+                        const cl::Buffer& nsum, const cl::Buffer& material) {
+    for (uint64_t b = 0; b < batches; ++b) {
+      const uint64_t begin = b * batch, end = std::min(copies, begin + batch);
+      if (batches > 1 || !expanded)
+        cl_.launch("expand", expand, tris, kGroup, cl_uint(tris), counts, offsets, info, cl_ulong(begin),
+                   cl_ulong(end), records);
+      expanded = true;
+      cl_.launch(name, raster, end - begin, kGroup, params, mesh.positions(), mesh.triangles(), records,
+                 cl_uint(end - begin), occ, ranks, count, nsum, material);
+    }
+  };
+
+  progress("raster");
+  Defines pass0 = mode;
+  pass0.push_back({"VOX_PASS", "0"});
+  cl::Kernel raster0 = cl_.kernel("vox_raster.cl", "vox_raster", pass0);
+  raster_all("raster", raster0, dummy, dummy, dummy, dummy);
+
+  VoxelGrid out;
+  out.spec = grid;
+  out.channels = options.channels;
+  out.occ.resize(words);
+  if (options.channels.attributes()) {
+    progress("attributes");
+    cl::Buffer ranks = alloc(words * 4, "voxel ranks");
+    const uint64_t set = exclusive_scan(cl_, ScanKind::kPopcountToUint, occ, ranks, words, "rank");
+    if (set > 0xffffffffull) fail("{} set voxels exceed the 2^32 limit of the attribute channels", set);
+    out.voxels_set = set;
+    auto channel = [&](Channel c, uint64_t bytes, const char* what) {
+      if (!options.channels.has(c)) return dummy;
+      cl::Buffer b = alloc(bytes, what);
+      cl_.fill_zero(b, bytes, "clear");
+      return b;
+    };
+    cl::Buffer count = channel(Channel::kCount, set * 4, "the count channel");
+    cl::Buffer nsum = channel(Channel::kNormal, set * 12, "the normal sums");
+    cl::Buffer material = channel(Channel::kMaterial, set * 4, "the material channel");
+    Defines pass1 = mode;
+    pass1.push_back({"VOX_PASS", "1"});
+    pass1.push_back({"VOX_CHANNELS", std::to_string(options.channels.bits)});
+    cl::Kernel raster1 = cl_.kernel("vox_raster.cl", "vox_raster", pass1);
+    raster_all("attributes", raster1, ranks, count, nsum, material);
+
+    if (options.channels.has(Channel::kCount)) {
+      out.count.resize(set);
+      cl_.download(count, out.count.data(), set * 4, "readback count");
+    }
+    if (options.channels.has(Channel::kMaterial)) {
+      out.material.resize(set);
+      cl_.download(material, out.material.data(), set * 4, "readback material");
+    }
+    if (options.channels.has(Channel::kNormal)) {
+      cl::Buffer normal = alloc(set * 12, "the normal channel");
+      cl::Kernel finalize = cl_.kernel("vox_finalize.cl", "vox_finalize", {{"WG_SIZE", std::to_string(kGroup)}});
+      cl_.launch("finalize", finalize, set, kGroup, nsum, normal, cl_uint(set));
+      out.normal_sum.resize(set);
+      out.normal.resize(set);
+      static_assert(sizeof(glm::ivec3) == 12 && sizeof(glm::vec3) == 12);
+      cl_.download(nsum, out.normal_sum.data(), set * 12, "readback normal sums");
+      cl_.download(normal, out.normal.data(), set * 12, "readback normals");
+    }
+  }
+  progress("readback");
+  cl_.download(occ, out.occ.data(), words * 4, "readback occupancy");
+  cl_.finish("voxelizing");
+  if (!options.channels.attributes()) {
+    uint64_t set = 0;
+    for (uint32_t w : out.occ) set += std::popcount(w);
+    out.voxels_set = set;
+  }
+
+  if (stats) {
+    *stats = VoxelizeStats{};
+    stats->triangles = tris;
+    stats->copies = copies;
+    stats->batches = batches;
+    stats->voxels_set = out.voxels_set;
+    stats->device_bytes = device_bytes;
+    for (const auto& [name, ms] : profile_since(cl_.profiler(), before)) {
+      if (is_prefixed(name, "upload")) {
+        stats->upload_ms += ms;
+      } else if (is_prefixed(name, "readback")) {
+        stats->readback_ms += ms;
+      } else {
+        stats->kernels_ms += ms;
+        stats->stage_ms[name] += ms;
+      }
+    }
+    stats->wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  return out;
+}
+
+}  // namespace voxr

@@ -1,0 +1,75 @@
+// The papers' one-pass slice voxelization as OpenCL kernels:
+//   vox_setup (per triangle: snap, slab and row range, copy count) -> scan (offsets) ->
+//   vox_expand (one record per copy: the geometry shader's duplication) -> vox_raster (clip the copy to its
+//   slab, walk its rows, set voxels) -> [attributes: rank scan of the occupancy words -> vox_raster pass 2
+//   -> vox_finalize (unit normals)].
+// Copies beyond the memory budget are expanded and rasterized in batches.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+
+#include "cl/cl_runtime.h"
+#include "core/grid_spec.h"
+#include "core/triangle_soup.h"
+#include "voxelize/raster_mode.h"
+#include "voxelize/voxel_grid.h"
+
+namespace voxr {
+
+struct VoxelizeOptions {
+  RasterMode mode = RasterMode::kConservative;
+  ChannelSet channels;
+  uint32_t rows_per_copy = 4;                  // rows of a slab one raster work item walks
+  uint64_t copy_budget_bytes = 256ull << 20;   // device memory for copy records per batch
+  std::function<void(const std::string& stage)> progress;  // optional, called between stages
+};
+
+struct VoxelizeStats {
+  uint64_t triangles = 0;        // uploaded (after splitting oversized triangles)
+  uint64_t triangles_split = 0;  // input triangles that were split
+  uint64_t copies = 0;           // (triangle, slab, row block) records
+  uint64_t batches = 0;
+  uint64_t voxels_set = 0;
+  uint64_t device_bytes = 0;     // peak of the buffers this run allocated
+  double upload_ms = 0.0;        // from profiling events
+  double kernels_ms = 0.0;
+  double readback_ms = 0.0;
+  double wall_ms = 0.0;          // host clock around the whole run, including waits
+  std::map<std::string, double> stage_ms;  // per kernel stage
+  double total_ms() const { return upload_ms + kernels_ms + readback_ms; }
+};
+
+// Triangles uploaded once, voxelized any number of times (benchmarks time the kernels alone).
+class DeviceMesh {
+ public:
+  DeviceMesh(ClRuntime& cl, const TriangleSoup& soup);
+  uint32_t triangle_count() const { return triangle_count_; }
+  const cl::Buffer& positions() const { return positions_; }
+  const cl::Buffer& triangles() const { return triangles_; }
+
+ private:
+  cl::Buffer positions_;
+  cl::Buffer triangles_;
+  uint32_t triangle_count_ = 0;
+};
+
+class SliceVoxelizer {
+ public:
+  explicit SliceVoxelizer(ClRuntime& cl) : cl_(cl) {}
+
+  // Uploads, voxelizes and reads back; stats (optional) receive counts and profiled times.
+  VoxelGrid run(const TriangleSoup& soup, const GridSpec& grid, const VoxelizeOptions& options,
+                VoxelizeStats* stats = nullptr);
+  // Voxelizes an uploaded mesh and reads back. The mesh must not need splitting (see
+  // split_oversized_triangles).
+  VoxelGrid run(const DeviceMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                VoxelizeStats* stats = nullptr);
+
+ private:
+  ClRuntime& cl_;
+};
+
+}  // namespace voxr

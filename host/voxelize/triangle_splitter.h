@@ -1,0 +1,21 @@
+// The exact integer predicates of the kernels hold for triangles up to VOXR_MAX_TRIANGLE_EXTENT voxels
+// long on each axis. Larger triangles (a ground plane cropped by --bounds, grids beyond 2000 voxels) are
+// split at edge midpoints until they fit; pieces that miss the grid are dropped.
+#pragma once
+
+#include <optional>
+
+#include "core/grid_spec.h"
+#include "core/triangle_soup.h"
+
+namespace voxr {
+
+// Extent (voxels) above which a triangle is split; below VOXR_MAX_TRIANGLE_EXTENT with room for rounding.
+constexpr float kSplitExtentVoxels = 2000.0f;
+
+// The soup with oversized triangles replaced by their pieces, or nothing when no triangle is too large.
+// `split` receives the number of input triangles that were split.
+std::optional<TriangleSoup> split_oversized_triangles(const TriangleSoup& soup, const GridSpec& grid,
+                                                      uint64_t* split = nullptr);
+
+}  // namespace voxr

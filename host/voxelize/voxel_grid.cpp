@@ -1,0 +1,45 @@
+#include "voxelize/voxel_grid.h"
+
+#include "core/error.h"
+
+namespace voxr {
+
+namespace {
+constexpr Channel kAllChannels[] = {Channel::kOcc, Channel::kCount, Channel::kNormal, Channel::kMaterial};
+}
+
+const char* channel_name(Channel c) {
+  switch (c) {
+    case Channel::kOcc: return "occ";
+    case Channel::kCount: return "count";
+    case Channel::kNormal: return "normal";
+    case Channel::kMaterial: return "material";
+  }
+  return "?";
+}
+
+ChannelSet ChannelSet::parse(std::string_view list) {
+  ChannelSet set;
+  while (!list.empty()) {
+    const size_t comma = list.find(',');
+    const std::string_view name = list.substr(0, comma);
+    bool known = false;
+    for (Channel c : kAllChannels)
+      if (name == channel_name(c)) {
+        set.add(c);
+        known = true;
+      }
+    if (!known) fail("unknown channel '{}' (channels: occ, count, normal, material)", name);
+    list = comma == std::string_view::npos ? std::string_view() : list.substr(comma + 1);
+  }
+  return set;
+}
+
+std::string ChannelSet::to_string() const {
+  std::string s;
+  for (Channel c : kAllChannels)
+    if (has(c)) s += (s.empty() ? "" : ",") + std::string(channel_name(c));
+  return s;
+}
+
+}  // namespace voxr

@@ -1,0 +1,63 @@
+// A voxelization result on the host. Occupancy is dense (one bit per voxel); the other channels are
+// sparse: one entry per set voxel, in increasing linear index (the order of occupancy's set bits), so a
+// 1024^3 grid with a few million surface voxels costs megabytes, not gigabytes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/grid_spec.h"
+
+namespace voxr {
+
+enum class Channel : uint32_t { kOcc = 1u << 0, kCount = 1u << 1, kNormal = 1u << 2, kMaterial = 1u << 3 };
+
+struct ChannelSet {
+  uint32_t bits = uint32_t(Channel::kOcc);
+  bool has(Channel c) const { return (bits & uint32_t(c)) != 0; }
+  void add(Channel c) { bits |= uint32_t(c); }
+  bool attributes() const { return (bits & ~uint32_t(Channel::kOcc)) != 0; }
+  // "occ,count,normal,material" (any subset; occ is always present). Throws voxr::Error naming the
+  // unknown channel.
+  static ChannelSet parse(std::string_view list);
+  std::string to_string() const;
+};
+
+const char* channel_name(Channel c);
+
+struct VoxelGrid {
+  GridSpec spec;
+  ChannelSet channels;
+  std::vector<uint32_t> occ;  // bit (linear % 32) of word (linear / 32)
+  uint64_t voxels_set = 0;
+
+  // Sparse attributes, voxels_set entries each when the channel was requested, else empty.
+  std::vector<uint32_t> count;        // triangles that wrote the voxel
+  std::vector<glm::ivec3> normal_sum; // fixed point, kNormalOne per unit normal of each triangle
+  std::vector<glm::vec3> normal;      // normalized normal_sum (zero where the sum cancels)
+  std::vector<uint32_t> material;     // largest material id among the triangles that wrote the voxel
+
+  bool occupied(uint64_t linear) const { return (occ[linear >> 5] >> (linear & 31)) & 1u; }
+  bool occupied(uint32_t i, uint32_t j, uint32_t k) const { return occupied(spec.linear_index(i, j, k)); }
+
+  // Calls fn(linear_index, rank) for every set voxel in increasing linear order; rank indexes the sparse
+  // channels.
+  template <typename Fn>
+  void for_each_set(Fn&& fn) const {
+    uint64_t rank = 0;
+    for (uint64_t w = 0; w < occ.size(); ++w) {
+      uint32_t bits = occ[w];
+      while (bits) {
+        const int b = __builtin_ctz(bits);
+        fn(w * 32 + uint64_t(b), rank++);
+        bits &= bits - 1;
+      }
+    }
+  }
+};
+
+}  // namespace voxr

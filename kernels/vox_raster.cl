@@ -1,0 +1,303 @@
+/* vox_raster.cl — the scanline stage: clip one triangle copy to its slab and walk the rows of its block,
+ * setting every voxel the raster rule selects.
+ *   conservative: voxel box (closed) overlaps the closed triangle — the 13-axis separating-axis test,
+ *                 evaluated incrementally along each row in exact 64-bit integers;
+ *   center:       the column centre (i+1/2, j+1/2) lies inside the triangle's projection (top-left tie
+ *                 rule) and the triangle's depth there lies in the slab [k, k+1).
+ * Float clipping of the triangle against the slab and each row only narrows the candidate range (with a
+ * margin far above float error); membership is always decided by the exact integer test.
+ * VOX_PASS 0 sets occupancy bits (one atomic_or per 32 voxels of a row). VOX_PASS 1 runs after the ranks
+ * of set voxels are known and adds the attributes VOX_CHANNELS asks for (bit 1 count, 2 normal sum,
+ * 3 material) at each voxel's rank.
+ * shape: one work item per copy record (triangle, slab, block of rows_per_copy rows). */
+#include "voxr_layout.h"
+#include "vox_triangle.h"
+
+#ifndef WG_SIZE
+#define WG_SIZE 64
+#endif
+#ifndef VOX_PASS
+#define VOX_PASS 0
+#endif
+#ifndef VOX_CHANNELS
+#define VOX_CHANNELS 0
+#endif
+/* Triangles spanning at most this many cells per axis skip the float clipping. */
+#ifndef VOX_SMALL_SPAN
+#define VOX_SMALL_SPAN 3
+#endif
+#define VOX_CLIP_MARGIN 0.0625f
+
+#define VOX_CH_COUNT 2
+#define VOX_CH_NORMAL 4
+#define VOX_CH_MATERIAL 8
+
+/* ---- float clipping: candidate ranges only ---------------------------------------------------------- */
+
+typedef struct VoxPoly {
+  float c[3][8]; /* c[axis][vertex] */
+  int n;
+} VoxPoly;
+
+/* Keeps the part of `in` where sign * (x_axis - bound) >= 0. */
+inline void vox_clip(VoxPoly* out, const VoxPoly* in, int axis, float bound, float sign) {
+  out->n = 0;
+  for (int a = 0; a < in->n; ++a) {
+    const int b = a + 1 == in->n ? 0 : a + 1;
+    const float da = sign * (in->c[axis][a] - bound);
+    const float db = sign * (in->c[axis][b] - bound);
+    if (da >= 0.0f) {
+      for (int q = 0; q < 3; ++q) out->c[q][out->n] = in->c[q][a];
+      ++out->n;
+    }
+    if ((da >= 0.0f) != (db >= 0.0f)) {
+      const float s = da / (da - db);
+      for (int q = 0; q < 3; ++q) out->c[q][out->n] = in->c[q][a] + s * (in->c[q][b] - in->c[q][a]);
+      ++out->n;
+    }
+  }
+}
+
+inline void vox_clip_band(VoxPoly* poly, int axis, float lo, float hi) {
+  VoxPoly tmp;
+  vox_clip(&tmp, poly, axis, lo, 1.0f);
+  vox_clip(poly, &tmp, axis, hi, -1.0f);
+}
+
+inline void vox_poly_range(const VoxPoly* poly, int axis, float* lo, float* hi) {
+  *lo = INFINITY;
+  *hi = -INFINITY;
+  for (int a = 0; a < poly->n; ++a) {
+    *lo = fmin(*lo, poly->c[axis][a]);
+    *hi = fmax(*hi, poly->c[axis][a]);
+  }
+}
+
+/* Cells whose raster sample meets [lo, hi] along an axis (a superset thanks to the margin). */
+inline void vox_cells(float lo, float hi, int* first, int* last) {
+  lo -= VOX_CLIP_MARGIN;
+  hi += VOX_CLIP_MARGIN;
+#if VOXR_MODE == VOXR_MODE_CONSERVATIVE
+  *first = (int)ceil(lo) - 1;
+  *last = (int)floor(hi);
+#else
+  *first = (int)ceil(lo - 0.5f);
+  *last = (int)floor(hi - 0.5f);
+#endif
+}
+
+/* ---- voxel writes -------------------------------------------------------------------------------- */
+
+typedef struct VoxWriter {
+  __global uint* occ;
+  __global const uint* rank_base;
+  __global uint* count;
+  __global int* nsum;
+  __global uint* material;
+  ulong word;
+  uint mask;
+  int normal[3];
+  uint material_id;
+} VoxWriter;
+
+inline void vox_flush(VoxWriter* w) {
+#if VOX_PASS == 0
+  if (w->mask) atomic_or(w->occ + w->word, w->mask);
+  w->mask = 0;
+#endif
+}
+
+inline void vox_emit(VoxWriter* w, ulong linear) {
+  const ulong word = linear >> 5;
+  const uint bit = 1u << (uint)(linear & 31);
+#if VOX_PASS == 0
+  if (word != w->word) {
+    vox_flush(w);
+    w->word = word;
+  }
+  w->mask |= bit;
+#else
+  const ulong rank = w->rank_base[word] + popcount(w->occ[word] & (bit - 1u));
+#if VOX_CHANNELS & VOX_CH_COUNT
+  atomic_inc(w->count + rank);
+#endif
+#if VOX_CHANNELS & VOX_CH_NORMAL
+  for (int q = 0; q < 3; ++q) atomic_add(w->nsum + 3 * rank + q, w->normal[q]);
+#endif
+#if VOX_CHANNELS & VOX_CH_MATERIAL
+  atomic_max(w->material + rank, w->material_id);
+#endif
+#endif
+}
+
+/* The triangle's unit normal in fixed point; float operations in an order the host reproduces. */
+inline void vox_fixed_normal(const VoxTri* t, int* out) {
+  const float f[3] = {convert_float(t->n[0]), convert_float(t->n[1]), convert_float(t->n[2])};
+  const float len2 = (f[0] * f[0] + f[1] * f[1]) + f[2] * f[2];
+  const float scale = len2 > 0.0f ? (float)VOXR_NORMAL_ONE / sqrt(len2) : 0.0f;
+  for (int q = 0; q < 3; ++q) out[q] = convert_int_rte(f[q] * scale);
+}
+
+/* ---- exact rules --------------------------------------------------------------------------------- */
+
+#if VOXR_MODE == VOXR_MODE_CONSERVATIVE
+/* A separating-axis candidate a: the box at relative corner b overlaps along a iff lo <= a.b <= hi. */
+typedef struct VoxAxis {
+  long a[3];
+  long lo, hi;
+} VoxAxis;
+
+inline VoxAxis vox_axis(const VoxTri* t, long ax, long ay, long az) {
+  VoxAxis r;
+  r.a[0] = ax;
+  r.a[1] = ay;
+  r.a[2] = az;
+  long p[2];
+  for (int c = 1; c < 3; ++c)
+    p[c - 1] = ax * (t->v[c][0] - t->v[0][0]) + ay * (t->v[c][1] - t->v[0][1]) + az * (t->v[c][2] - t->v[0][2]);
+  const long tmin = min(0L, min(p[0], p[1]));
+  const long tmax = max(0L, max(p[0], p[1]));
+  r.lo = tmin - VOX_S * (max(ax, 0L) + max(ay, 0L) + max(az, 0L));
+  r.hi = tmax - VOX_S * (min(ax, 0L) + min(ay, 0L) + min(az, 0L));
+  return r;
+}
+#endif
+
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
+    VoxGridParams grid, __global const float4* positions, __global const uint4* triangles,
+    __global const VoxCopy* copies, uint copy_count, __global uint* occ, __global const uint* rank_base,
+    __global uint* count, __global int* nsum, __global uint* material) {
+  const uint gid = get_global_id(0);
+  if (gid >= copy_count) return;
+  const VoxCopy rec = copies[gid];
+  const uint4 tri_indices = triangles[rec.triangle];
+  VoxTri t;
+  vox_load_triangle(&t, &grid, positions, tri_indices);
+
+  const int k = (int)VOXR_COPY_SLICE(rec);
+  int row_first = t.first[1] + (int)(VOXR_COPY_BLOCK(rec) * grid.rows_per_copy);
+  int row_last = min(t.last[1], row_first + (int)grid.rows_per_copy - 1);
+
+  /* Large triangles: clip to the slab (float) to narrow the rows, and later each row to narrow columns. */
+  const int clip_columns = t.last[0] - t.first[0] >= VOX_SMALL_SPAN;
+  VoxPoly slab;
+  if (clip_columns || t.last[1] - t.first[1] >= VOX_SMALL_SPAN) {
+    slab.n = 3;
+    for (int c = 0; c < 3; ++c)
+      for (int a = 0; a < 3; ++a) slab.c[a][c] = (float)t.v[c][a] / (float)VOXR_SUBVOXEL;
+    vox_clip_band(&slab, 2, (float)k - VOX_CLIP_MARGIN, (float)(k + 1) + VOX_CLIP_MARGIN);
+    if (slab.n == 0) return;
+    float lo, hi;
+    int first, last;
+    vox_poly_range(&slab, 1, &lo, &hi);
+    vox_cells(lo, hi, &first, &last);
+    row_first = max(row_first, first);
+    row_last = min(row_last, last);
+  }
+  if (row_first > row_last) return;
+
+  VoxWriter w;
+  w.occ = occ;
+  w.rank_base = rank_base;
+  w.count = count;
+  w.nsum = nsum;
+  w.material = material;
+  w.word = ~0UL;
+  w.mask = 0;
+  w.material_id = tri_indices.w;
+#if VOX_PASS == 1 && (VOX_CHANNELS & VOX_CH_NORMAL)
+  vox_fixed_normal(&t, w.normal);
+#endif
+
+  const long rel_z = (long)k * VOX_S - t.v[0][2];
+
+#if VOXR_MODE == VOXR_MODE_CONSERVATIVE
+  /* Edge x box-axis candidates. Those with the x axis are constant along a row; the others, with the
+   * triangle normal, vary linearly with the column. The box axes are the loop ranges. */
+  VoxAxis row_axes[3], col_axes[7];
+  for (int e = 0; e < 3; ++e) {
+    const int f = e == 2 ? 0 : e + 1;
+    const long d[3] = {t.v[f][0] - t.v[e][0], t.v[f][1] - t.v[e][1], t.v[f][2] - t.v[e][2]};
+    row_axes[e] = vox_axis(&t, 0, d[2], -d[1]);
+    col_axes[2 * e] = vox_axis(&t, -d[2], 0, d[0]);
+    col_axes[2 * e + 1] = vox_axis(&t, d[1], -d[0], 0);
+  }
+  col_axes[6] = vox_axis(&t, t.n[0], t.n[1], t.n[2]);
+#else
+  /* Projected edges of the triangle, ordered counter-clockwise. */
+  const int o1 = t.n[2] > 0 ? 1 : 2, o2 = t.n[2] > 0 ? 2 : 1;
+  const long px[3] = {t.v[0][0], t.v[o1][0], t.v[o2][0]};
+  const long py[3] = {t.v[0][1], t.v[o1][1], t.v[o2][1]};
+  long edge_dx[3], edge_dy[3], edge_bias[3];
+  for (int e = 0; e < 3; ++e) {
+    const int f = e == 2 ? 0 : e + 1;
+    edge_dx[e] = px[f] - px[e];
+    edge_dy[e] = py[f] - py[e];
+    /* Top-left rule: a centre exactly on an edge belongs to the triangle on the edge's left/top side. */
+    edge_bias[e] = (edge_dy[e] < 0 || (edge_dy[e] == 0 && edge_dx[e] < 0)) ? 0 : 1;
+  }
+  const long sgn = t.n[2] > 0 ? 1 : -1;
+  const long depth_lo = rel_z * t.n[2] * sgn;
+  const long depth_hi = (rel_z + VOX_S) * t.n[2] * sgn;
+#endif
+
+  for (int j = row_first; j <= row_last; ++j) {
+    int col_first = t.first[0], col_last = t.last[0];
+    if (clip_columns) {
+      VoxPoly row = slab;
+#if VOXR_MODE == VOXR_MODE_CONSERVATIVE
+      vox_clip_band(&row, 1, (float)j - VOX_CLIP_MARGIN, (float)(j + 1) + VOX_CLIP_MARGIN);
+#else
+      vox_clip_band(&row, 1, (float)j + 0.5f - VOX_CLIP_MARGIN, (float)j + 0.5f + VOX_CLIP_MARGIN);
+#endif
+      if (row.n == 0) continue;
+      float lo, hi;
+      int first, last;
+      vox_poly_range(&row, 0, &lo, &hi);
+      vox_cells(lo, hi, &first, &last);
+      col_first = max(col_first, first);
+      col_last = min(col_last, last);
+    }
+    if (col_first > col_last) continue;
+    const ulong row_base = ((ulong)k * grid.dims[1] + (ulong)j) * grid.dims[0];
+
+#if VOXR_MODE == VOXR_MODE_CONSERVATIVE
+    const long rel_y = (long)j * VOX_S - t.v[0][1];
+    int row_ok = 1;
+    for (int e = 0; e < 3; ++e) {
+      const long v = row_axes[e].a[1] * rel_y + row_axes[e].a[2] * rel_z;
+      row_ok &= row_axes[e].lo <= v && v <= row_axes[e].hi;
+    }
+    if (!row_ok) continue;
+    const long rel_x = (long)col_first * VOX_S - t.v[0][0];
+    long value[7];
+    for (int q = 0; q < 7; ++q)
+      value[q] = col_axes[q].a[0] * rel_x + col_axes[q].a[1] * rel_y + col_axes[q].a[2] * rel_z;
+    for (int i = col_first; i <= col_last; ++i) {
+      int inside = 1;
+      for (int q = 0; q < 7; ++q) {
+        inside &= col_axes[q].lo <= value[q] && value[q] <= col_axes[q].hi;
+        value[q] += col_axes[q].a[0] * VOX_S;
+      }
+      if (inside) vox_emit(&w, row_base + (ulong)i);
+    }
+#else
+    const long cy = (long)j * VOX_S + VOX_S / 2;
+    const long cx0 = (long)col_first * VOX_S + VOX_S / 2;
+    long edge[3];
+    for (int e = 0; e < 3; ++e) edge[e] = edge_dx[e] * (cy - py[e]) - edge_dy[e] * (cx0 - px[e]);
+    long depth = -sgn * (t.n[0] * (cx0 - t.v[0][0]) + t.n[1] * (cy - t.v[0][1]));
+    const long depth_step = -sgn * t.n[0] * VOX_S;
+    for (int i = col_first; i <= col_last; ++i) {
+      int inside = depth_lo <= depth && depth < depth_hi;
+      for (int e = 0; e < 3; ++e) {
+        inside &= edge[e] >= edge_bias[e];
+        edge[e] -= edge_dy[e] * VOX_S;
+      }
+      depth += depth_step;
+      if (inside) vox_emit(&w, row_base + (ulong)i);
+    }
+#endif
+  }
+  vox_flush(&w);
+}

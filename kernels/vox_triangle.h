@@ -1,0 +1,93 @@
+/* vox_triangle.h — one triangle in exact grid coordinates, shared by vox_setup.cl, vox_expand.cl and
+ * vox_raster.cl (and mirrored by host/voxelize/reference_voxelizer.cpp).
+ *
+ * Vertices are transformed to grid units in float (no contraction, so the host reproduces them bit for
+ * bit) and snapped to the 1/VOXR_SUBVOXEL lattice. Everything after the snap is 64-bit integer arithmetic.
+ * Ranges below are inclusive voxel/row/slab index ranges, already clamped to the grid. */
+#ifndef VOX_TRIANGLE_H
+#define VOX_TRIANGLE_H
+
+#pragma OPENCL FP_CONTRACT OFF
+
+#define VOX_S ((long)VOXR_SUBVOXEL)
+
+typedef struct VoxTri {
+  long v[3][3];   /* snapped vertices, fixed point */
+  long lo[3];     /* bounding box, fixed point */
+  long hi[3];
+  long n[3];      /* (v1-v0) x (v2-v0), fixed point squared */
+  int first[3];   /* first voxel index along x, y, z touched under the raster rule */
+  int last[3];    /* last index; first > last when the triangle misses the grid */
+} VoxTri;
+
+inline long vox_floor_div(long a, long b) { /* b > 0 */
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+inline long vox_snap(float g) {
+  /* Clamp far-away coordinates so the conversion is defined; such triangles never reach the grid. */
+  const float limit = 1.0e9f;
+  g = clamp(g * (float)VOXR_SUBVOXEL, -limit, limit);
+  return (long)convert_int_rte(g);
+}
+
+inline void vox_load_triangle(VoxTri* t, const VoxGridParams* grid, __global const float4* positions,
+                              uint4 tri) {
+  const float4 p[3] = {positions[tri.x], positions[tri.y], positions[tri.z]};
+  for (int c = 0; c < 3; ++c) {
+    for (int a = 0; a < 3; ++a) {
+      /* Explicit evaluation order; the host mirrors it. */
+      const float* m = grid->world_to_grid + 4 * a;
+      t->v[c][a] = vox_snap(((m[0] * p[c].x + m[1] * p[c].y) + m[2] * p[c].z) + m[3]);
+    }
+  }
+  for (int a = 0; a < 3; ++a) {
+    t->lo[a] = min(t->v[0][a], min(t->v[1][a], t->v[2][a]));
+    t->hi[a] = max(t->v[0][a], max(t->v[1][a], t->v[2][a]));
+  }
+  const long e0[3] = {t->v[1][0] - t->v[0][0], t->v[1][1] - t->v[0][1], t->v[1][2] - t->v[0][2]};
+  const long e1[3] = {t->v[2][0] - t->v[0][0], t->v[2][1] - t->v[0][1], t->v[2][2] - t->v[0][2]};
+  t->n[0] = e0[1] * e1[2] - e0[2] * e1[1];
+  t->n[1] = e0[2] * e1[0] - e0[0] * e1[2];
+  t->n[2] = e0[0] * e1[1] - e0[1] * e1[0];
+
+  for (int a = 0; a < 3; ++a) {
+    long first, last;
+#if VOXR_MODE == VOXR_MODE_CONSERVATIVE
+    /* Closed boxes [k, k+1]: k*S <= hi and (k+1)*S >= lo. */
+    first = vox_floor_div(t->lo[a] - 1, VOX_S);
+    last = vox_floor_div(t->hi[a], VOX_S);
+#else
+    if (a < 2) { /* pixel centres (j + 1/2) * S inside [lo, hi] */
+      first = vox_floor_div(t->lo[a] - VOX_S / 2 + VOX_S - 1, VOX_S);
+      last = vox_floor_div(t->hi[a] - VOX_S / 2, VOX_S);
+    } else { /* half-open slabs [k*S, (k+1)*S) containing a depth in [lo, hi] */
+      first = vox_floor_div(t->lo[a], VOX_S);
+      last = vox_floor_div(t->hi[a], VOX_S);
+    }
+#endif
+    t->first[a] = (int)max(first, 0L);
+    t->last[a] = (int)min(last, (long)grid->dims[a] - 1);
+  }
+}
+
+/* Whether the triangle produces any copy: it reaches the grid and, for the centre rule, its projection
+ * on the slicing plane has area (an edge-on triangle covers no pixel centre). */
+inline int vox_triangle_active(const VoxTri* t) {
+  int active = t->first[0] <= t->last[0] && t->first[1] <= t->last[1] && t->first[2] <= t->last[2];
+#if VOXR_MODE == VOXR_MODE_CENTER
+  active = active && t->n[2] != 0;
+#endif
+  return active;
+}
+
+inline int vox_triangle_too_large(const VoxTri* t) {
+  const long limit = (long)VOXR_MAX_TRIANGLE_EXTENT * VOX_S;
+  return t->hi[0] - t->lo[0] > limit || t->hi[1] - t->lo[1] > limit || t->hi[2] - t->lo[2] > limit;
+}
+
+inline uint vox_row_blocks(const VoxTri* t, uint rows_per_copy) {
+  return (uint)(t->last[1] - t->first[1]) / rows_per_copy + 1;
+}
+
+#endif

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Install every Debian 12 package voxr needs to build, test, benchmark and view. Idempotent: packages
+# already present are skipped, so a second run costs one dpkg query.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config clang-format
+  pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers opencl-c-headers clinfo
+  libglm-dev libopenmesh-dev nlohmann-json3-dev libfmt-dev libcli11-dev
+  libopenimageio-dev openimageio-tools libembree-dev libvtk9-dev
+  libgtest-dev libbenchmark-dev python3-matplotlib xvfb xauth
+  glmark2-data libcgal-demo
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q '^install ok installed$' || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+if [ "$(id -u)" -ne 0 ]; then
+  echo "install-deps: missing packages: ${missing[*]}; run this script as root" >&2
+  exit 1
+fi
+
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}"
