@@ -1,19 +1,39 @@
-/* vox_finalize.cl — unit normals of set voxels from their fixed-point normal sums (zero where the sum
- * cancels, e.g. a voxel touched by both sides of a thin sheet).
- * in: nsum[3*r+q]  out: normal[3*r+q]  shape: one work item per set voxel. */
+/* vox_finalize.cl — unpacks the attribute accumulators of vox_raster.cl's second pass:
+ * acc[2r] = sum(n.x) + count * 2^32, acc[2r+1] = sum(n.y) + sum(n.z) * 2^32 (each sum below 2^31 in
+ * magnitude), into the count, the fixed-point normal sum and the unit normal (zero where the sum cancels,
+ * e.g. a voxel touched by both sides of a thin sheet). VOX_CHANNELS selects the outputs written.
+ * shape: one work item per set voxel. */
 #ifndef WG_SIZE
 #define WG_SIZE 64
 #endif
+#ifndef VOX_CHANNELS
+#define VOX_CHANNELS 0
+#endif
+#define VOX_CH_COUNT 2
+#define VOX_CH_NORMAL 4
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_finalize(
-    __global const int* nsum, __global float* normal, uint voxel_count) {
+    __global const long* acc, __global uint* count, __global int* nsum, __global float* normal, uint voxel_count) {
   const uint r = get_global_id(0);
   if (r >= voxel_count) return;
+  const long p0 = acc[2 * (ulong)r];
+  const int nx = as_int((uint)p0);
+#if VOX_CHANNELS & VOX_CH_COUNT
+  count[r] = (uint)((p0 - nx) / (1L << 32));
+#endif
+#if VOX_CHANNELS & VOX_CH_NORMAL
+  const long p1 = acc[2 * (ulong)r + 1];
+  const int ny = as_int((uint)p1);
+  const int nz = (int)((p1 - ny) / (1L << 32)); /* exact: the difference is a multiple */
   const ulong base = 3 * (ulong)r;
-  const float3 s = (float3)((float)nsum[base], (float)nsum[base + 1], (float)nsum[base + 2]);
+  nsum[base] = nx;
+  nsum[base + 1] = ny;
+  nsum[base + 2] = nz;
+  const float3 s = (float3)((float)nx, (float)ny, (float)nz);
   const float len = length(s);
   const float3 n = len > 0.0f ? s / len : (float3)(0.0f);
   normal[base] = n.x;
   normal[base + 1] = n.y;
   normal[base + 2] = n.z;
+#endif
 }

@@ -8,10 +8,14 @@
  * margin far above float error); membership is always decided by the exact integer test.
  * VOX_PASS 0 sets occupancy bits (one atomic_or per 32 voxels of a row). VOX_PASS 1 runs after the ranks
  * of set voxels are known and adds the attributes VOX_CHANNELS asks for (bit 1 count, 2 normal sum,
- * 3 material) at each voxel's rank.
+ * 3 material) at each voxel's rank. Count and normal sum share two 64-bit accumulators per voxel so a write
+ * costs two atomics, not four: acc[2r] += n.x + 2^32 (count in the high half), acc[2r+1] += n.y + n.z*2^32.
+ * Two's complement makes the packed sums exact; vox_finalize.cl unpacks them.
  * shape: one work item per copy record (triangle, slab, block of rows_per_copy rows). */
 #include "voxr_layout.h"
 #include "vox_triangle.h"
+
+#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 
 #ifndef WG_SIZE
 #define WG_SIZE 64
@@ -22,7 +26,7 @@
 #ifndef VOX_CHANNELS
 #define VOX_CHANNELS 0
 #endif
-/* Triangles spanning at most this many cells per axis skip the float clipping. */
+/* Triangles spanning fewer than this many cells per axis skip the float clipping. */
 #ifndef VOX_SMALL_SPAN
 #define VOX_SMALL_SPAN 3
 #endif
@@ -91,8 +95,7 @@ inline void vox_cells(float lo, float hi, int* first, int* last) {
 typedef struct VoxWriter {
   __global uint* occ;
   __global const uint* rank_base;
-  __global uint* count;
-  __global int* nsum;
+  __global long* acc;
   __global uint* material;
   ulong word;
   uint mask;
@@ -102,7 +105,9 @@ typedef struct VoxWriter {
 
 inline void vox_flush(VoxWriter* w) {
 #if VOX_PASS == 0
-  if (w->mask) atomic_or(w->occ + w->word, w->mask);
+  /* Most surface voxels are set by several copies: a plain read skips the locked write when the bits are
+   * already there (bits are only ever set during this pass, so the race is benign). */
+  if (w->mask && (w->occ[w->word] & w->mask) != w->mask) atomic_or(w->occ + w->word, w->mask);
   w->mask = 0;
 #endif
 }
@@ -118,11 +123,11 @@ inline void vox_emit(VoxWriter* w, ulong linear) {
   w->mask |= bit;
 #else
   const ulong rank = w->rank_base[word] + popcount(w->occ[word] & (bit - 1u));
-#if VOX_CHANNELS & VOX_CH_COUNT
-  atomic_inc(w->count + rank);
+#if VOX_CHANNELS & (VOX_CH_COUNT | VOX_CH_NORMAL)
+  atom_add(w->acc + 2 * rank, (long)w->normal[0] + (1L << 32));
 #endif
 #if VOX_CHANNELS & VOX_CH_NORMAL
-  for (int q = 0; q < 3; ++q) atomic_add(w->nsum + 3 * rank + q, w->normal[q]);
+  atom_add(w->acc + 2 * rank + 1, (long)w->normal[1] + ((long)w->normal[2] << 32));
 #endif
 #if VOX_CHANNELS & VOX_CH_MATERIAL
   atomic_max(w->material + rank, w->material_id);
@@ -164,15 +169,14 @@ inline VoxAxis vox_axis(const VoxTri* t, long ax, long ay, long az) {
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
-    VoxGridParams grid, __global const float4* positions, __global const uint4* triangles,
-    __global const VoxCopy* copies, uint copy_count, __global uint* occ, __global const uint* rank_base,
-    __global uint* count, __global int* nsum, __global uint* material) {
+    VoxGridParams grid, __global const int4* snapped, __global const VoxCopy* copies, uint copy_count, __global uint* occ, __global const uint* rank_base,
+    __global long* acc, __global uint* material) {
   const uint gid = get_global_id(0);
   if (gid >= copy_count) return;
   const VoxCopy rec = copies[gid];
-  const uint4 tri_indices = triangles[rec.triangle];
   VoxTri t;
-  vox_load_triangle(&t, &grid, positions, tri_indices);
+  const uint material_id = vox_fetch_triangle(&t, snapped, rec.triangle);
+  vox_derive(&t, &grid);
 
   const int k = (int)VOXR_COPY_SLICE(rec);
   int row_first = t.first[1] + (int)(VOXR_COPY_BLOCK(rec) * grid.rows_per_copy);
@@ -199,12 +203,12 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
   VoxWriter w;
   w.occ = occ;
   w.rank_base = rank_base;
-  w.count = count;
-  w.nsum = nsum;
+  w.acc = acc;
+  w.normal[0] = w.normal[1] = w.normal[2] = 0;
   w.material = material;
   w.word = ~0UL;
   w.mask = 0;
-  w.material_id = tri_indices.w;
+  w.material_id = material_id;
 #if VOX_PASS == 1 && (VOX_CHANNELS & VOX_CH_NORMAL)
   vox_fixed_normal(&t, w.normal);
 #endif
@@ -273,13 +277,13 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
     long value[7];
     for (int q = 0; q < 7; ++q)
       value[q] = col_axes[q].a[0] * rel_x + col_axes[q].a[1] * rel_y + col_axes[q].a[2] * rel_z;
+    long step[7];
+    for (int q = 0; q < 7; ++q) step[q] = col_axes[q].a[0] * VOX_S;
     for (int i = col_first; i <= col_last; ++i) {
       int inside = 1;
-      for (int q = 0; q < 7; ++q) {
-        inside &= col_axes[q].lo <= value[q] && value[q] <= col_axes[q].hi;
-        value[q] += col_axes[q].a[0] * VOX_S;
-      }
+      for (int q = 0; q < 7; ++q) inside &= col_axes[q].lo <= value[q] && value[q] <= col_axes[q].hi;
       if (inside) vox_emit(&w, row_base + (ulong)i);
+      for (int q = 0; q < 7; ++q) value[q] += step[q];
     }
 #else
     const long cy = (long)j * VOX_S + VOX_S / 2;

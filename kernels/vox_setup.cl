@@ -1,7 +1,8 @@
 /* vox_setup.cl — per triangle: snap to the grid, find the slabs and rows it may touch, and count its
  * copies (one per slab and block of rows_per_copy rows).
  * in:  positions (float4), triangles (uint4: indices, material)
- * out: copy_counts[t], copy_info[t] = (first slab, row blocks); too_large counts triangles the host should
+ * out: snapped[3t..3t+2] (fixed-point vertices, material; what the later stages read instead of the mesh),
+ *      copy_counts[t], copy_info[t] = (first slab, row blocks); too_large counts triangles the host should
  *      have split (must stay 0).
  * shape: one work item per triangle. */
 #include "voxr_layout.h"
@@ -13,11 +14,14 @@
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_setup(
     VoxGridParams grid, __global const float4* positions, __global const uint4* triangles,
-    __global uint* copy_counts, __global uint2* copy_info, __global uint* too_large) {
+    __global int4* snapped, __global uint* copy_counts, __global uint2* copy_info, __global uint* too_large) {
   const uint t = get_global_id(0);
   if (t >= grid.triangle_count) return;
+  const uint4 indices = triangles[t];
   VoxTri tri;
-  vox_load_triangle(&tri, &grid, positions, triangles[t]);
+  vox_snap_triangle(&tri, &grid, positions, indices);
+  vox_derive(&tri, &grid);
+  vox_store_triangle(&tri, indices.w, snapped, t);
   uint count = 0;
   uint2 info = (uint2)(0, 0);
   if (vox_triangle_active(&tri)) {

@@ -20,8 +20,10 @@ typedef struct VoxTri {
   int last[3];    /* last index; first > last when the triangle misses the grid */
 } VoxTri;
 
-inline long vox_floor_div(long a, long b) { /* b > 0 */
-  return a >= 0 ? a / b : -((-a + b - 1) / b);
+/* floor(a / VOXR_SUBVOXEL) with shifts of non-negative values only (no 64-bit division, and no reliance
+ * on how >> treats negative numbers): for a < 0, floor(a/S) = ~(~a >> bits). */
+inline long vox_floor_cell(long a) {
+  return a >= 0 ? a >> VOXR_SUBVOXEL_BITS : ~((~a) >> VOXR_SUBVOXEL_BITS);
 }
 
 inline long vox_snap(float g) {
@@ -31,8 +33,8 @@ inline long vox_snap(float g) {
   return (long)convert_int_rte(g);
 }
 
-inline void vox_load_triangle(VoxTri* t, const VoxGridParams* grid, __global const float4* positions,
-                              uint4 tri) {
+/* Transforms and snaps the triangle's vertices (vox_setup.cl stores them for the later stages). */
+inline void vox_snap_triangle(VoxTri* t, const VoxGridParams* grid, __global const float4* positions, uint4 tri) {
   const float4 p[3] = {positions[tri.x], positions[tri.y], positions[tri.z]};
   for (int c = 0; c < 3; ++c) {
     for (int a = 0; a < 3; ++a) {
@@ -41,6 +43,28 @@ inline void vox_load_triangle(VoxTri* t, const VoxGridParams* grid, __global con
       t->v[c][a] = vox_snap(((m[0] * p[c].x + m[1] * p[c].y) + m[2] * p[c].z) + m[3]);
     }
   }
+}
+
+/* Stored form: three int4, xyz = vertex, w of the first = material. */
+inline void vox_store_triangle(const VoxTri* t, uint material, __global int4* snapped, uint index) {
+  for (int c = 0; c < 3; ++c)
+    snapped[3 * (ulong)index + c] =
+        (int4)((int)t->v[c][0], (int)t->v[c][1], (int)t->v[c][2], c == 0 ? (int)material : 0);
+}
+
+inline uint vox_fetch_triangle(VoxTri* t, __global const int4* snapped, uint index) {
+  int4 q[3];
+  for (int c = 0; c < 3; ++c) q[c] = snapped[3 * (ulong)index + c];
+  for (int c = 0; c < 3; ++c) {
+    t->v[c][0] = q[c].x;
+    t->v[c][1] = q[c].y;
+    t->v[c][2] = q[c].z;
+  }
+  return (uint)q[0].w;
+}
+
+/* Bounding box, normal and the index ranges of snapped vertices. */
+inline void vox_derive(VoxTri* t, const VoxGridParams* grid) {
   for (int a = 0; a < 3; ++a) {
     t->lo[a] = min(t->v[0][a], min(t->v[1][a], t->v[2][a]));
     t->hi[a] = max(t->v[0][a], max(t->v[1][a], t->v[2][a]));
@@ -55,15 +79,15 @@ inline void vox_load_triangle(VoxTri* t, const VoxGridParams* grid, __global con
     long first, last;
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
     /* Closed boxes [k, k+1]: k*S <= hi and (k+1)*S >= lo. */
-    first = vox_floor_div(t->lo[a] - 1, VOX_S);
-    last = vox_floor_div(t->hi[a], VOX_S);
+    first = vox_floor_cell(t->lo[a] - 1);
+    last = vox_floor_cell(t->hi[a]);
 #else
     if (a < 2) { /* pixel centres (j + 1/2) * S inside [lo, hi] */
-      first = vox_floor_div(t->lo[a] - VOX_S / 2 + VOX_S - 1, VOX_S);
-      last = vox_floor_div(t->hi[a] - VOX_S / 2, VOX_S);
+      first = vox_floor_cell(t->lo[a] - VOX_S / 2 + VOX_S - 1);
+      last = vox_floor_cell(t->hi[a] - VOX_S / 2);
     } else { /* half-open slabs [k*S, (k+1)*S) containing a depth in [lo, hi] */
-      first = vox_floor_div(t->lo[a], VOX_S);
-      last = vox_floor_div(t->hi[a], VOX_S);
+      first = vox_floor_cell(t->lo[a]);
+      last = vox_floor_cell(t->hi[a]);
     }
 #endif
     t->first[a] = (int)max(first, 0L);

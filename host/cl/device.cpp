@@ -69,6 +69,7 @@ std::vector<DeviceInfo> list_devices() {
       info.type = type_name(devices[d].getInfo<CL_DEVICE_TYPE>());
       info.driver_version = devices[d].getInfo<CL_DRIVER_VERSION>();
       info.opencl_version = devices[d].getInfo<CL_DEVICE_VERSION>();
+      info.extensions = devices[d].getInfo<CL_DEVICE_EXTENSIONS>();
       info.compute_units = devices[d].getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
       info.global_memory = devices[d].getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
       info.max_allocation = devices[d].getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();

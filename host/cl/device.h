@@ -17,6 +17,7 @@ struct DeviceInfo {
   std::string type;  // "GPU", "CPU", "accelerator", "other"
   std::string driver_version;
   std::string opencl_version;
+  std::string extensions;
   uint32_t compute_units = 0;
   uint64_t global_memory = 0;
   uint64_t max_allocation = 0;

@@ -95,6 +95,7 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
   cl::Buffer occ = alloc(words * 4, fmt::format("the occupancy bits of a {}x{}x{} grid", grid.dims.x,
                                                 grid.dims.y, grid.dims.z));
   cl_.fill_zero(occ, words * 4, "clear");
+  cl::Buffer snapped = alloc(tris * 48, "snapped triangles");
   cl::Buffer counts = alloc(tris * 4, "copy counts");
   cl::Buffer info = alloc(tris * 8, "copy info");
   cl::Buffer offsets = alloc(tris * 8, "copy offsets");
@@ -102,7 +103,8 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
   cl::Buffer dummy = alloc(4, "unused channel");
   cl_.fill_zero(too_large, 4, "clear");
   cl::Kernel setup = cl_.kernel("vox_setup.cl", "vox_setup", mode);
-  cl_.launch("setup", setup, tris, kGroup, params, mesh.positions(), mesh.triangles(), counts, info, too_large);
+  cl_.launch("setup", setup, tris, kGroup, params, mesh.positions(), mesh.triangles(), snapped, counts, info,
+             too_large);
   const uint64_t copies = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, tris, "scan");
   cl_uint oversized = 0;
   cl_.download(too_large, &oversized, 4, "split check");
@@ -114,19 +116,19 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
   const uint64_t batches = copies == 0 ? 0 : (copies + batch - 1) / batch;
   cl::Buffer records = alloc(batch * sizeof(VoxCopy), "copy records");
   cl::Kernel expand = cl_.kernel("vox_expand.cl", "vox_expand", mode);
-  // Expands and rasterizes every batch of copies with `raster` (whose arguments after the copies are
-  // given); a single batch is expanded once and reused by the second pass.
+  // Expands and rasterizes every batch of copies with `raster`; a single batch is expanded once and
+  // reused by the second pass.
   bool expanded = false;
-  auto raster_all = [&](const char* name, cl::Kernel& raster, const cl::Buffer& ranks, const cl::Buffer& count,
-                        const cl::Buffer& nsum, const cl::Buffer& material) {
+  auto raster_all = [&](const char* name, cl::Kernel& raster, const cl::Buffer& ranks, const cl::Buffer& acc,
+                        const cl::Buffer& material) {
     for (uint64_t b = 0; b < batches; ++b) {
       const uint64_t begin = b * batch, end = std::min(copies, begin + batch);
       if (batches > 1 || !expanded)
         cl_.launch("expand", expand, tris, kGroup, cl_uint(tris), counts, offsets, info, cl_ulong(begin),
                    cl_ulong(end), records);
       expanded = true;
-      cl_.launch(name, raster, end - begin, kGroup, params, mesh.positions(), mesh.triangles(), records,
-                 cl_uint(end - begin), occ, ranks, count, nsum, material);
+      cl_.launch(name, raster, end - begin, kGroup, params, snapped, records, cl_uint(end - begin), occ, ranks,
+                 acc, material);
     }
   };
 
@@ -134,7 +136,7 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
   Defines pass0 = mode;
   pass0.push_back({"VOX_PASS", "0"});
   cl::Kernel raster0 = cl_.kernel("vox_raster.cl", "vox_raster", pass0);
-  raster_all("raster", raster0, dummy, dummy, dummy, dummy);
+  raster_all("raster", raster0, dummy, dummy, dummy);
 
   VoxelGrid out;
   out.spec = grid;
@@ -146,38 +148,48 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
     const uint64_t set = exclusive_scan(cl_, ScanKind::kPopcountToUint, occ, ranks, words, "rank");
     if (set > 0xffffffffull) fail("{} set voxels exceed the 2^32 limit of the attribute channels", set);
     out.voxels_set = set;
-    auto channel = [&](Channel c, uint64_t bytes, const char* what) {
-      if (!options.channels.has(c)) return dummy;
+    // Count and normal sums accumulate packed in two 64-bit words per voxel (see vox_raster.cl).
+    const bool packed = options.channels.has(Channel::kCount) || options.channels.has(Channel::kNormal);
+    if (packed && cl_.device().extensions.find("cl_khr_int64_base_atomics") == std::string::npos)
+      fail("{} lacks cl_khr_int64_base_atomics, which the count and normal channels need", cl_.device().label());
+    auto zeroed = [&](bool wanted, uint64_t bytes, const char* what) {
+      if (!wanted) return dummy;
       cl::Buffer b = alloc(bytes, what);
       cl_.fill_zero(b, bytes, "clear");
       return b;
     };
-    cl::Buffer count = channel(Channel::kCount, set * 4, "the count channel");
-    cl::Buffer nsum = channel(Channel::kNormal, set * 12, "the normal sums");
-    cl::Buffer material = channel(Channel::kMaterial, set * 4, "the material channel");
+    cl::Buffer acc = zeroed(packed, set * 16, "the count/normal accumulators");
+    cl::Buffer material = zeroed(options.channels.has(Channel::kMaterial), set * 4, "the material channel");
+    const std::string channel_bits = std::to_string(options.channels.bits);
     Defines pass1 = mode;
     pass1.push_back({"VOX_PASS", "1"});
-    pass1.push_back({"VOX_CHANNELS", std::to_string(options.channels.bits)});
+    pass1.push_back({"VOX_CHANNELS", channel_bits});
     cl::Kernel raster1 = cl_.kernel("vox_raster.cl", "vox_raster", pass1);
-    raster_all("attributes", raster1, ranks, count, nsum, material);
+    raster_all("attributes", raster1, ranks, acc, material);
 
-    if (options.channels.has(Channel::kCount)) {
-      out.count.resize(set);
-      cl_.download(count, out.count.data(), set * 4, "readback count");
+    if (packed) {
+      const bool normals = options.channels.has(Channel::kNormal);
+      cl::Buffer count = options.channels.has(Channel::kCount) ? alloc(set * 4, "the count channel") : dummy;
+      cl::Buffer nsum = normals ? alloc(set * 12, "the normal sums") : dummy;
+      cl::Buffer normal = normals ? alloc(set * 12, "the normal channel") : dummy;
+      cl::Kernel finalize = cl_.kernel("vox_finalize.cl", "vox_finalize",
+                                       {{"WG_SIZE", std::to_string(kGroup)}, {"VOX_CHANNELS", channel_bits}});
+      cl_.launch("finalize", finalize, set, kGroup, acc, count, nsum, normal, cl_uint(set));
+      if (options.channels.has(Channel::kCount)) {
+        out.count.resize(set);
+        cl_.download(count, out.count.data(), set * 4, "readback count");
+      }
+      if (normals) {
+        static_assert(sizeof(glm::ivec3) == 12 && sizeof(glm::vec3) == 12);
+        out.normal_sum.resize(set);
+        out.normal.resize(set);
+        cl_.download(nsum, out.normal_sum.data(), set * 12, "readback normal sums");
+        cl_.download(normal, out.normal.data(), set * 12, "readback normals");
+      }
     }
     if (options.channels.has(Channel::kMaterial)) {
       out.material.resize(set);
       cl_.download(material, out.material.data(), set * 4, "readback material");
-    }
-    if (options.channels.has(Channel::kNormal)) {
-      cl::Buffer normal = alloc(set * 12, "the normal channel");
-      cl::Kernel finalize = cl_.kernel("vox_finalize.cl", "vox_finalize", {{"WG_SIZE", std::to_string(kGroup)}});
-      cl_.launch("finalize", finalize, set, kGroup, nsum, normal, cl_uint(set));
-      out.normal_sum.resize(set);
-      out.normal.resize(set);
-      static_assert(sizeof(glm::ivec3) == 12 && sizeof(glm::vec3) == 12);
-      cl_.download(nsum, out.normal_sum.data(), set * 12, "readback normal sums");
-      cl_.download(normal, out.normal.data(), set * 12, "readback normals");
     }
   }
   progress("readback");

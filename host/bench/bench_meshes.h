@@ -1,0 +1,26 @@
+// Named meshes for benchmarks, built the same way on every machine: procedural generators, the
+// Debian-packaged meshes (scripts/fetch-meshes.sh, looked up in $VOXR_MESH_DIR, default data/meshes) and
+// midpoint subdivision for the million-triangle sizes. A name is BASE or BASExN with N = 4^levels:
+// "torus" (800), "bunny" (69 K), "bunnyx16" (1.1 M), "armadillo", "armadillox16", "dragon", "elephant".
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/triangle_soup.h"
+
+namespace voxr {
+
+struct BenchMesh {
+  std::string name;
+  TriangleSoup soup;
+};
+
+// Throws voxr::Error for an unknown name, a factor that is not a power of 4, or a missing mesh file
+// (naming scripts/fetch-meshes.sh).
+BenchMesh make_bench_mesh(const std::string& name);
+
+// The sweep of `voxr bench voxelize` by default.
+const std::vector<std::string>& default_bench_meshes();
+
+}  // namespace voxr

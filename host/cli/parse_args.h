@@ -1,0 +1,17 @@
+// Parsers for the CLI's composite values ("X,Y,Z", "x0,y0,z0,x1,y1,z1"); errors name the flag.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+#include "core/triangle_soup.h"
+
+namespace voxr::cli {
+
+std::vector<double> parse_numbers(const std::string& text, size_t count, const std::string& flag);
+glm::uvec3 parse_dims(const std::string& text, const std::string& flag);
+Bounds parse_bounds(const std::string& text, const std::string& flag);
+
+}  // namespace voxr::cli
