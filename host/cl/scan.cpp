@@ -40,7 +40,7 @@ uint64_t exclusive_scan(ClRuntime& cl, ScanKind kind, const cl::Buffer& in, cl::
   cl.launch(name, scan_tiles, tiles * kScanGroup, kScanGroup, in, out, tile_sums, cl_ulong(n));
   if (tiles == 1) {
     cl_ulong total = 0;
-    cl.download(tile_sums, &total, sizeof(total), name + " total");
+    cl.download(tile_sums, &total, sizeof(total), "readback " + name + " total");
     return total;
   }
   cl::Buffer tile_offsets = cl.buffer(tiles * sizeof(cl_ulong), name + " tile offsets");

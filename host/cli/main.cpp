@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
   CLI::App app{"voxr: voxelize triangle scenes with OpenCL kernels and render effects from the voxels"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "voxr 0.1.0");
+  // One line per failure: "voxr: error: --res: Value 0 not in range 1 to 16384".
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return fmt::format("voxr: error: {}\n", e.what()); });
   const voxr::cli::Command commands[] = {voxr::cli::add_devices(app), voxr::cli::add_voxelize(app),
                                          voxr::cli::add_bench(app)};
   try {

@@ -107,7 +107,7 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
              too_large);
   const uint64_t copies = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, tris, "scan");
   cl_uint oversized = 0;
-  cl_.download(too_large, &oversized, 4, "split check");
+  cl_.download(too_large, &oversized, 4, "readback split check");
   if (oversized)
     throw InternalError(fmt::format("{} triangles exceed {} voxels; split_oversized_triangles must run first",
                                     oversized, VOXR_MAX_TRIANGLE_EXTENT));

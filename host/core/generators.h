@@ -1,0 +1,71 @@
+// Procedural meshes. Every generator is deterministic (same arguments, same soup, bit for bit), closed
+// surfaces share vertex indices (watertight: every undirected edge is used by exactly two triangles) and
+// every triangle winds counter-clockwise seen from outside, so normals (b-a)x(c-a) point outwards and the
+// signed volume is positive. Material ids are 0 except where a generator says otherwise.
+#pragma once
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/triangle_soup.h"
+
+namespace voxr {
+
+// Ring torus around the Y axis (the hole runs along Y), centred at the origin: `rings` segments around the
+// major circle times `sides` around the tube, 2*rings*sides triangles (800 by default, the papers' torus).
+// Needs major > minor > 0, rings >= 3, sides >= 3.
+TriangleSoup make_torus(float major = 1.0f, float minor = 0.4f, int rings = 20, int sides = 20);
+
+// Sphere at the origin with poles on the Y axis, each pole a single vertex: 2*slices*(stacks-1) triangles.
+// Needs radius > 0, stacks >= 2, slices >= 3.
+TriangleSoup make_uv_sphere(float radius = 1.0f, int stacks = 16, int slices = 32);
+
+// Axis-aligned box, 8 vertices and 12 triangles. Needs lo < hi on every axis.
+TriangleSoup make_box(glm::vec3 lo = glm::vec3(-0.5f), glm::vec3 hi = glm::vec3(0.5f));
+
+// A vase standing on y = 0 around the Y axis, a closed solid with walls: outer surface, a flat rim at the
+// top joining it to the inner surface, the inner surface offset inwards by `thickness`, and a bottom
+// `thickness` thick. `profile` holds outer radii at evenly spaced heights from the bottom (first) to the top
+// (last); the outline between them is a Catmull-Rom curve clamped between neighbouring radii, sampled at
+// `rows` heights. Needs height > 2*thickness, thickness > 0, at least 2 profile radii all > thickness,
+// segments >= 3, rows >= 1.
+struct VaseParams {
+  float height = 1.0f;
+  std::vector<float> profile{0.30f, 0.42f, 0.45f, 0.36f, 0.22f, 0.20f, 0.26f};
+  float thickness = 0.03f;
+  int segments = 48;  // around the axis
+  int rows = 32;      // along the height, per surface
+};
+TriangleSoup make_vase(const VaseParams& params = {});
+
+// A small tree: a closed, tapered trunk (material 0) from y = 0 to y = 1, and leaves (material 1) in an
+// ellipsoidal crown around (0, 1.25, 0). Each leaf is an open quad sheet (2 triangles, 4 vertices of its
+// own) of random position, orientation and size; there are round(kTreeLeavesPerDensity * density) of them.
+// Same density and seed, same tree. Needs density >= 0.
+inline constexpr uint32_t kTreeTrunkMaterial = 0;
+inline constexpr uint32_t kTreeLeafMaterial = 1;
+inline constexpr float kTreeLeavesPerDensity = 300.0f;
+TriangleSoup make_tree(float density = 1.0f, uint32_t seed = 1);
+
+// Open square grid in the XZ plane at y = 0, centred at the origin, `size` = (extent along x, along z),
+// subdivisions x subdivisions cells, 2 triangles each, normals +Y. Needs size > 0, subdivisions >= 1.
+TriangleSoup make_plane(glm::vec2 size = glm::vec2(2.0f), int subdivisions = 1);
+
+// Names make_generated knows, in the order error messages list them.
+const std::vector<std::string>& generator_names();
+
+// Runs generator `name` ("torus", "sphere", "box", "vase", "tree", "plane") with parameters from the JSON
+// object `params` (null or {} for all defaults). Keys are the parameter names above: torus {major, minor,
+// rings, sides}, sphere {radius, stacks, slices}, box {lo, hi}, vase {height, profile, thickness, segments,
+// rows}, tree {density, seed}, plane {size, subdivisions}. Throws voxr::Error starting with `where` (the
+// scene file, say) for an unknown name, an unknown key, a wrong type or an out-of-range value, naming the
+// key as `path`.key.
+TriangleSoup make_generated(const std::string& name, const nlohmann::json& params, const std::string& where,
+                            const std::string& path = "params");
+
+}  // namespace voxr

@@ -1,0 +1,649 @@
+#include "core/scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+#include "core/generators.h"
+#include "core/mesh_loader.h"
+#include "core/subdivide.h"
+
+namespace voxr {
+
+using nlohmann::json;
+
+// ---------------------------------------------------------------------------------------------------------
+// JsonObjectReader
+
+namespace {
+
+// Compact JSON of a value for messages, cut to a readable length.
+std::string shown(const json& value) {
+  std::string s = value.dump();
+  return s.size() > 40 ? s.substr(0, 37) + "..." : s;
+}
+
+size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      const bool same = std::tolower((unsigned char)a[i - 1]) == std::tolower((unsigned char)b[j - 1]);
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string join(const std::vector<std::string_view>& items) {
+  std::string s;
+  for (std::string_view item : items) s += (s.empty() ? "" : ", ") + std::string(item);
+  return s;
+}
+
+std::string join_path(const std::string& base, std::string_view key) {
+  return base.empty() ? std::string(key) : base + "." + std::string(key);
+}
+
+}  // namespace
+
+void fail_json_value(const std::string& where, const std::string& path, std::string_view what) {
+  fail("{}: '{}' {}", where, path, what);
+}
+
+glm::vec3 json_vec3(const json& value, const std::string& where, const std::string& path) {
+  if (!value.is_array() || value.size() != 3 || !std::all_of(value.begin(), value.end(), [](const json& v) {
+        return v.is_number();
+      }))
+    fail_json_value(where, path, fmt::format("must be an array of 3 numbers (got {})", shown(value)));
+  glm::vec3 v;
+  for (int c = 0; c < 3; ++c) {
+    const double d = value[c].get<double>();
+    if (!std::isfinite(float(d))) fail_json_value(where, path, fmt::format("must be finite (got {})", shown(value)));
+    v[c] = float(d);
+  }
+  return v;
+}
+
+JsonObjectReader::JsonObjectReader(const json& value, std::string where, std::string path,
+                                   std::initializer_list<std::string_view> allowed)
+    : value_(value), where_(std::move(where)), path_(std::move(path)), allowed_(allowed) {
+  if (!value_.is_object())
+    fail("{}: '{}' must be an object (got {})", where_, path_.empty() ? "the top level" : path_, shown(value_));
+  for (const auto& item : value_.items()) {
+    const std::string& key = item.key();
+    if (std::find(allowed_.begin(), allowed_.end(), key) != allowed_.end()) continue;
+    // Suggest an allowed key that extends the unknown one ("rotate" -> "rotate_deg"), or else the closest
+    // by edit distance when it is close enough to be a typo.
+    std::string_view best;
+    size_t best_distance = std::numeric_limits<size_t>::max();
+    for (std::string_view a : allowed_) {
+      if (key.size() >= 3 && (a.starts_with(key) || std::string_view(key).starts_with(a))) {
+        best = a;
+        best_distance = 0;
+        break;
+      }
+      if (const size_t d = edit_distance(key, a); d < best_distance) best_distance = d, best = a;
+    }
+    if (!best.empty() && best_distance <= std::max<size_t>(2, best.size() / 3))
+      fail("{}: unknown key '{}' (did you mean '{}'?)", where_, join_path(path_, key), join_path(path_, best));
+    fail("{}: unknown key '{}' (allowed here: {})", where_, join_path(path_, key), join(allowed_));
+  }
+}
+
+std::string JsonObjectReader::path(std::string_view key) const { return join_path(path_, key); }
+
+void JsonObjectReader::check_allowed(std::string_view key) const {
+  // Asking for a key the constructor did not allow is a bug in the reader, not in the scene.
+  VOXR_CHECK(std::find(allowed_.begin(), allowed_.end(), key) != allowed_.end());
+}
+
+bool JsonObjectReader::has(std::string_view key) const {
+  check_allowed(key);
+  return value_.contains(key);
+}
+
+const json* JsonObjectReader::get(std::string_view key) const {
+  check_allowed(key);
+  const auto it = value_.find(key);
+  return it == value_.end() ? nullptr : &*it;
+}
+
+const json& JsonObjectReader::required(std::string_view key) const {
+  const json* v = get(key);
+  if (!v) fail("{}: missing required key '{}'", where_, path(key));
+  return *v;
+}
+
+void JsonObjectReader::fail_key(std::string_view key, std::string_view what) const {
+  fail("{}: '{}' {}", where_, path(key), what);
+}
+
+void JsonObjectReader::require(bool ok, std::string_view key, std::string_view what) const {
+  if (ok) return;
+  const json* v = get(key);
+  if (v) fail_key(key, fmt::format("{} (got {})", what, shown(*v)));
+  fail_key(key, what);
+}
+
+void JsonObjectReader::forbid(std::string_view key, std::string_view why) const {
+  if (has(key)) fail_key(key, why);
+}
+
+float JsonObjectReader::number(std::string_view key, std::optional<float> fallback) const {
+  const json* v = get(key);
+  if (!v && fallback) return *fallback;
+  const json& value = v ? *v : required(key);
+  if (!value.is_number()) fail_key(key, fmt::format("must be a number (got {})", shown(value)));
+  const double d = value.get<double>();
+  if (!std::isfinite(float(d))) fail_key(key, fmt::format("must be a finite float (got {})", shown(value)));
+  return float(d);
+}
+
+int64_t JsonObjectReader::integer(std::string_view key, std::optional<int64_t> fallback, int64_t lo,
+                                  int64_t hi) const {
+  const json* v = get(key);
+  if (!v && fallback) return *fallback;
+  const json& value = v ? *v : required(key);
+  const bool in_range = value.is_number_integer() &&
+                        (value.is_number_unsigned() ? value.get<uint64_t>() <= uint64_t(hi) && hi >= 0 &&
+                                                          int64_t(value.get<uint64_t>()) >= lo
+                                                    : value.get<int64_t>() >= lo && value.get<int64_t>() <= hi);
+  if (!in_range) fail_key(key, fmt::format("must be an integer in [{}, {}] (got {})", lo, hi, shown(value)));
+  return value.is_number_unsigned() ? int64_t(value.get<uint64_t>()) : value.get<int64_t>();
+}
+
+std::string JsonObjectReader::string(std::string_view key, std::optional<std::string> fallback) const {
+  const json* v = get(key);
+  if (!v && fallback) return *fallback;
+  const json& value = v ? *v : required(key);
+  if (!value.is_string()) fail_key(key, fmt::format("must be a string (got {})", shown(value)));
+  return value.get<std::string>();
+}
+
+glm::vec3 JsonObjectReader::vec3(std::string_view key, std::optional<glm::vec3> fallback) const {
+  const json* v = get(key);
+  if (!v && fallback) return *fallback;
+  return json_vec3(v ? *v : required(key), where_, path(key));
+}
+
+glm::vec2 JsonObjectReader::vec2(std::string_view key, std::optional<glm::vec2> fallback) const {
+  const json* v = get(key);
+  if (!v && fallback) return *fallback;
+  const std::vector<float> n = numbers(key);
+  if (n.size() != 2) fail_key(key, fmt::format("must be an array of 2 numbers (got {})", shown(*v)));
+  return glm::vec2(n[0], n[1]);
+}
+
+std::vector<float> JsonObjectReader::numbers(std::string_view key, std::optional<std::vector<float>> fallback) const {
+  const json* v = get(key);
+  if (!v && fallback) return *fallback;
+  const json& value = v ? *v : required(key);
+  if (!value.is_array()) fail_key(key, fmt::format("must be an array of numbers (got {})", shown(value)));
+  std::vector<float> out;
+  for (const json& e : value) {
+    if (!e.is_number() || !std::isfinite(float(e.get<double>())))
+      fail_key(key, fmt::format("must be an array of finite numbers (got {})", shown(value)));
+    out.push_back(float(e.get<double>()));
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Scene parsing
+
+glm::mat4 make_transform(glm::vec3 scale, glm::vec3 rotate_deg, glm::vec3 translate) {
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), translate);
+  // Column vectors: the rightmost factor acts first, so this is T * Rz * Ry * Rx * S.
+  m = glm::rotate(m, glm::radians(rotate_deg.z), glm::vec3(0, 0, 1));
+  m = glm::rotate(m, glm::radians(rotate_deg.y), glm::vec3(0, 1, 0));
+  m = glm::rotate(m, glm::radians(rotate_deg.x), glm::vec3(1, 0, 0));
+  return glm::scale(m, scale);
+}
+
+Camera default_camera(const Bounds& bounds) {
+  Camera camera;
+  const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : 0.5f * (bounds.lo + bounds.hi);
+  float radius = 0.5f * glm::length(bounds.size());
+  if (!(radius > 0.0f)) radius = 1.0f;
+  camera.look_at = center;
+  // Far enough that the bounding sphere fits the vertical field of view, with a little room.
+  const float distance = 1.1f * radius / std::sin(0.5f * glm::radians(camera.fov_deg));
+  camera.position = center + distance * glm::normalize(glm::vec3(0.0f, 0.25f, 1.0f));
+  return camera;
+}
+
+Light default_light(const Bounds& bounds) {
+  Light light;
+  const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : 0.5f * (bounds.lo + bounds.hi);
+  float radius = 0.5f * glm::length(bounds.size());
+  if (!(radius > 0.0f)) radius = 1.0f;
+  light.type = "point";
+  light.position = center + radius * glm::vec3(1.0f, 3.0f, 2.0f);
+  const glm::vec3 d = light.position - center;
+  light.intensity = glm::vec3(glm::dot(d, d));  // irradiance 1 at the centre
+  return light;
+}
+
+namespace {
+
+constexpr int kMaxSubdivide = 8;
+constexpr int64_t kMaxImageSize = 16384;
+
+std::filesystem::path mesh_dir() {
+  const char* env = std::getenv("VOXR_MESH_DIR");
+  return env && *env ? std::filesystem::path(env) : std::filesystem::current_path() / "data" / "meshes";
+}
+
+std::filesystem::path resolve_mesh_path(const JsonObjectReader& in, const std::string& text,
+                                        const std::filesystem::path& base_dir) {
+  namespace fs = std::filesystem;
+  static constexpr std::string_view kPrefix = "$VOXR_MESH_DIR/";
+  std::error_code ec;
+  if (std::string_view(text).substr(0, kPrefix.size()) == kPrefix) {
+    const fs::path p = mesh_dir() / text.substr(kPrefix.size());
+    if (!fs::exists(p, ec))
+      in.fail_key("file", fmt::format("names '{}', which does not exist (VOXR_MESH_DIR={}; run "
+                                      "scripts/fetch-meshes.sh to fetch the packaged meshes)",
+                                      p.string(), mesh_dir().string()));
+    return p;
+  }
+  const fs::path p(text);
+  if (p.is_absolute()) return p;  // load_mesh reports a missing file
+  const fs::path local = base_dir / p;
+  if (fs::exists(local, ec)) return local;
+  const fs::path shared = mesh_dir() / p;
+  if (fs::exists(shared, ec)) return shared;
+  in.fail_key("file", fmt::format("'{}' not found in {} nor in VOXR_MESH_DIR={} (scripts/fetch-meshes.sh "
+                                  "fetches the packaged meshes)",
+                                  text, base_dir.empty() ? "." : base_dir.string(), mesh_dir().string()));
+}
+
+MaterialKind parse_kind(const JsonObjectReader& in) {
+  const std::string kind = in.string("kind");
+  if (kind == "opaque") return MaterialKind::kOpaque;
+  if (kind == "dielectric") return MaterialKind::kDielectric;
+  if (kind == "sheet") return MaterialKind::kSheet;
+  in.fail_key("kind", fmt::format("must be opaque, dielectric or sheet (got \"{}\")", kind));
+}
+
+glm::vec3 unit_color(const JsonObjectReader& in, std::string_view key, std::optional<glm::vec3> fallback) {
+  const glm::vec3 c = in.vec3(key, fallback);
+  in.require(glm::all(glm::greaterThanEqual(c, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(c, glm::vec3(1.0f))),
+             key, "must have every component in [0, 1]");
+  return c;
+}
+
+glm::vec3 non_negative(const JsonObjectReader& in, std::string_view key, std::optional<glm::vec3> fallback) {
+  const glm::vec3 v = in.vec3(key, fallback);
+  in.require(glm::all(glm::greaterThanEqual(v, glm::vec3(0.0f))), key, "must have every component >= 0");
+  return v;
+}
+
+Material parse_material(const json& value, const std::string& where, const std::string& path) {
+  const JsonObjectReader in(value, where, path, {"name", "kind", "color", "ior", "absorption", "transmittance"});
+  Material m;
+  m.name = in.string("name");
+  in.require(!m.name.empty(), "name", "must not be empty");
+  m.kind = parse_kind(in);
+  const std::string why = fmt::format("is not used by kind '{}'", material_kind_name(m.kind));
+  switch (m.kind) {
+    case MaterialKind::kOpaque:
+      m.color = unit_color(in, "color", m.color);
+      for (const char* key : {"ior", "absorption", "transmittance"}) in.forbid(key, why);
+      break;
+    case MaterialKind::kDielectric:
+      m.ior = in.number("ior", m.ior);
+      in.require(m.ior > 0.0f, "ior", "must be positive");
+      m.absorption = non_negative(in, "absorption", m.absorption);
+      for (const char* key : {"color", "transmittance"}) in.forbid(key, why);
+      break;
+    case MaterialKind::kSheet:
+      m.color = unit_color(in, "color", m.color);
+      m.transmittance = unit_color(in, "transmittance", m.transmittance);
+      for (const char* key : {"ior", "absorption"}) in.forbid(key, why);
+      break;
+  }
+  return m;
+}
+
+glm::mat4 parse_transform(const json& value, const std::string& where, const std::string& path) {
+  const JsonObjectReader in(value, where, path, {"scale", "rotate_deg", "translate"});
+  glm::vec3 scale(1.0f);
+  if (const json* s = in.get("scale"); s && s->is_number()) {
+    scale = glm::vec3(in.number("scale"));
+  } else if (s) {
+    if (!s->is_array()) in.fail_key("scale", fmt::format("must be a number or an array of 3 numbers (got {})", shown(*s)));
+    scale = in.vec3("scale");
+  }
+  in.require(scale.x != 0.0f && scale.y != 0.0f && scale.z != 0.0f, "scale", "must not be 0 along any axis");
+  return make_transform(scale, in.vec3("rotate_deg", glm::vec3(0.0f)), in.vec3("translate", glm::vec3(0.0f)));
+}
+
+uint32_t find_material(const JsonObjectReader& in, const std::vector<Material>& materials, const json& name,
+                       const std::string& path) {
+  if (!name.is_string()) fail_json_value(in.where(), path, fmt::format("must be a material name (got {})", shown(name)));
+  const std::string s = name.get<std::string>();
+  for (size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].name == s) return uint32_t(i);
+  std::vector<std::string_view> known;
+  for (const Material& m : materials) known.push_back(m.name);
+  fail_json_value(in.where(), path, fmt::format("names no material: \"{}\" (materials: {})", s, join(known)));
+}
+
+MeshInstance parse_mesh(const json& value, const std::string& where, const std::string& path,
+                        const std::vector<Material>& materials, const std::filesystem::path& base_dir) {
+  const JsonObjectReader in(value, where, path, {"file", "generator", "params", "material", "subdivide", "transform"});
+  MeshInstance mesh;
+  if (in.has("file") == in.has("generator"))
+    fail("{}: '{}' needs exactly one of 'file' and 'generator'", where, path);
+  if (in.has("file")) {
+    in.forbid("params", "is only used with 'generator'");
+    const std::filesystem::path file = resolve_mesh_path(in, in.string("file"), base_dir);
+    mesh.source = file.string();
+    try {
+      mesh.soup = load_mesh(file);
+    } catch (const Error& e) {
+      in.fail_key("file", fmt::format("could not be loaded: {}", e.what()));
+    }
+  } else {
+    const std::string name = in.string("generator");
+    const auto& names = generator_names();
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      std::vector<std::string_view> known(names.begin(), names.end());
+      in.fail_key("generator", fmt::format("must be one of {} (got \"{}\")", join(known), name));
+    }
+    const json* params = in.get("params");
+    mesh.source = "generator:" + name;
+    mesh.soup = make_generated(name, params ? *params : json(), where, in.path("params"));
+  }
+  const int levels = int(in.integer("subdivide", 0, 0, kMaxSubdivide));
+  if (levels > 0) {
+    try {
+      mesh.soup = subdivide_midpoint(mesh.soup, levels);
+    } catch (const Error& e) {
+      in.fail_key("subdivide", e.what());
+    }
+  }
+
+  const json* material = in.get("material");
+  if (!material) {
+    mesh.material = 0;
+  } else if (material->is_array()) {
+    // One scene material per material id the mesh carries.
+    std::vector<uint32_t> map;
+    for (size_t k = 0; k < material->size(); ++k)
+      map.push_back(find_material(in, materials, (*material)[k], fmt::format("{}[{}]", in.path("material"), k)));
+    uint32_t used = 0;
+    for (const glm::uvec4& t : mesh.soup.triangles) used = std::max(used, t.w);
+    in.require(used < map.size(), "material",
+               fmt::format("must list a material for each of the mesh's material ids 0..{}", used));
+    for (glm::uvec4& t : mesh.soup.triangles) t.w = map[t.w];
+    mesh.material = TriangleSoup::kKeepMaterial;
+  } else {
+    mesh.material = find_material(in, materials, *material, in.path("material"));
+  }
+
+  if (const json* t = in.get("transform")) mesh.transform = parse_transform(*t, where, in.path("transform"));
+  return mesh;
+}
+
+Light parse_light(const json& value, const std::string& where) {
+  const JsonObjectReader in(value, where, "light", {"type", "position", "direction", "intensity"});
+  Light light;
+  light.type = in.string("type");
+  if (light.type == "point") {
+    light.position = in.vec3("position");
+    in.forbid("direction", "is not used by a point light");
+  } else if (light.type == "directional") {
+    const glm::vec3 d = in.vec3("direction");
+    in.require(glm::length(d) > 0.0f, "direction", "must not be zero");
+    light.direction = glm::normalize(d);
+    in.forbid("position", "is not used by a directional light");
+  } else {
+    in.fail_key("type", fmt::format("must be point or directional (got \"{}\")", light.type));
+  }
+  light.intensity = non_negative(in, "intensity", light.intensity);
+  return light;
+}
+
+Camera parse_camera(const json& value, const std::string& where) {
+  const JsonObjectReader in(value, where, "camera", {"position", "look_at", "up", "fov_deg", "width", "height"});
+  Camera camera;
+  camera.position = in.vec3("position");
+  camera.look_at = in.vec3("look_at");
+  in.require(camera.look_at != camera.position, "look_at", "must differ from 'position'");
+  camera.up = in.vec3("up", camera.up);
+  const glm::vec3 view = glm::normalize(camera.look_at - camera.position);
+  in.require(glm::length(camera.up) > 0.0f &&
+                 glm::length(glm::cross(view, glm::normalize(camera.up))) > 1e-4f,
+             "up", "must be non-zero and not parallel to the view direction");
+  camera.fov_deg = in.number("fov_deg", camera.fov_deg);
+  in.require(camera.fov_deg > 0.0f && camera.fov_deg < 180.0f, "fov_deg", "must be in (0, 180)");
+  camera.width = uint32_t(in.integer("width", camera.width, 1, kMaxImageSize));
+  camera.height = uint32_t(in.integer("height", camera.height, 1, kMaxImageSize));
+  return camera;
+}
+
+GridRequest parse_grid(const json& value, const std::string& where) {
+  const JsonObjectReader in(value, where, "grid", {"res", "dims", "bounds", "margin_voxels"});
+  GridRequest grid;
+  if (in.has("res") && in.has("dims")) fail("{}: 'grid' takes 'res' or 'dims', not both", where);
+  grid.resolution = uint32_t(in.integer("res", grid.resolution, 1, kMaxGridDim));
+  if (const json* d = in.get("dims")) {
+    if (!d->is_array() || d->size() != 3)
+      in.fail_key("dims", fmt::format("must be an array of 3 integers (got {})", shown(*d)));
+    glm::uvec3 dims;
+    for (int a = 0; a < 3; ++a) {
+      const json& e = (*d)[a];
+      if (!e.is_number_integer() || e.get<int64_t>() < 1 || e.get<int64_t>() > int64_t(kMaxGridDim))
+        in.fail_key("dims", fmt::format("must hold integers in [1, {}] (got {})", kMaxGridDim, shown(*d)));
+      dims[a] = uint32_t(e.get<int64_t>());
+    }
+    grid.dims = dims;
+  }
+  if (in.has("bounds")) {
+    const std::vector<float> b = in.numbers("bounds");
+    in.require(b.size() == 6, "bounds", "must be [x0, y0, z0, x1, y1, z1]");
+    Bounds bounds;
+    bounds.lo = glm::vec3(b[0], b[1], b[2]);
+    bounds.hi = glm::vec3(b[3], b[4], b[5]);
+    in.require(glm::all(glm::lessThan(bounds.lo, bounds.hi)), "bounds", "must have x0 < x1, y0 < y1 and z0 < z1");
+    grid.bounds = bounds;
+  }
+  grid.margin_voxels = in.number("margin_voxels", grid.margin_voxels);
+  in.require(grid.margin_voxels >= 0.0f && grid.margin_voxels <= 1000.0f, "margin_voxels", "must be in [0, 1000]");
+  return grid;
+}
+
+// Parses JSON text, reporting syntax errors with line and column and refusing duplicate keys (which
+// nlohmann::json would silently resolve to the last one).
+json parse_json(std::string_view text, const std::string& where) {
+  struct Frame {
+    bool array = false;
+    size_t index = 0;
+    std::string key;
+    std::vector<std::string> keys;
+  };
+  std::vector<Frame> stack;
+  auto where_in = [&]() {
+    std::string path;
+    for (size_t i = 0; i < stack.size(); ++i) {
+      const Frame& f = stack[i];
+      if (f.array)
+        path += fmt::format("[{}]", f.index);
+      else if (i + 1 < stack.size())
+        path = join_path(path, f.key);
+    }
+    return path;
+  };
+  auto finish_value = [&]() {
+    if (!stack.empty() && stack.back().array) ++stack.back().index;
+  };
+  const json::parser_callback_t callback = [&](int, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        stack.push_back({false, 0, {}, {}});
+        break;
+      case json::parse_event_t::array_start:
+        stack.push_back({true, 0, {}, {}});
+        break;
+      case json::parse_event_t::key: {
+        Frame& f = stack.back();
+        const std::string key = parsed.get<std::string>();
+        if (std::find(f.keys.begin(), f.keys.end(), key) != f.keys.end()) {
+          f.key = key;
+          fail("{}: duplicate key '{}'", where, join_path(where_in(), key));
+        }
+        f.keys.push_back(key);
+        f.key = key;
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        stack.pop_back();
+        finish_value();
+        break;
+      case json::parse_event_t::value:
+        finish_value();
+        break;
+    }
+    return true;
+  };
+  try {
+    return json::parse(text.begin(), text.end(), callback, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error while ..."
+    std::string reason = e.what();
+    if (const size_t bracket = reason.find("] "); reason.starts_with("[json.exception") && bracket != std::string::npos)
+      reason = reason.substr(bracket + 2);
+    fail("{}: JSON {}", where, reason);
+  }
+}
+
+void apply_defaults(Scene& scene, bool has_light, bool has_camera, bool has_environment) {
+  if (has_light && has_camera && has_environment) return;
+  const Bounds bounds = scene_bounds(scene);
+  if (!has_light) scene.light = default_light(bounds);
+  if (!has_camera) scene.camera = default_camera(bounds);
+  if (!has_environment) scene.environment.color = kDefaultEnvironment;
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view json_text, const std::string& label, const std::filesystem::path& base_dir) {
+  const json root_value = parse_json(json_text, label);
+  const JsonObjectReader root(root_value, label, "",
+                              {"materials", "meshes", "light", "camera", "environment", "grid"});
+  Scene scene;
+  scene.source = label;
+
+  if (const json* materials = root.get("materials")) {
+    if (!materials->is_array() || materials->empty())
+      root.require(false, "materials", "must be a non-empty array of materials");
+    for (size_t i = 0; i < materials->size(); ++i) {
+      const std::string path = fmt::format("materials[{}]", i);
+      Material m = parse_material((*materials)[i], label, path);
+      for (const Material& other : scene.materials)
+        if (other.name == m.name) fail("{}: '{}.name' repeats the material name \"{}\"", label, path, m.name);
+      scene.materials.push_back(std::move(m));
+    }
+  } else {
+    scene.materials.push_back(Material{"default", MaterialKind::kOpaque});
+  }
+
+  const json* meshes = root.get("meshes");
+  if (!meshes) fail("{}: missing required key 'meshes'", label);
+  if (!meshes->is_array() || meshes->empty()) root.require(false, "meshes", "must be a non-empty array of meshes");
+  for (size_t i = 0; i < meshes->size(); ++i)
+    scene.meshes.push_back(parse_mesh((*meshes)[i], label, fmt::format("meshes[{}]", i), scene.materials, base_dir));
+
+  if (const json* light = root.get("light")) scene.light = parse_light(*light, label);
+  if (const json* camera = root.get("camera")) scene.camera = parse_camera(*camera, label);
+  if (const json* env = root.get("environment")) {
+    const JsonObjectReader in(*env, label, "environment", {"color"});
+    scene.environment.color = non_negative(in, "color", std::nullopt);
+  }
+  if (const json* grid = root.get("grid")) {
+    scene.grid = parse_grid(*grid, label);
+    scene.grid_given = true;
+  }
+  apply_defaults(scene, root.has("light"), root.has("camera"), root.has("environment"));
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& json_file) {
+  const std::string label = json_file.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(json_file, ec)) fail("{}: no such file", label);
+  if (std::filesystem::is_directory(json_file, ec)) fail("{}: is a directory, not a scene file", label);
+  std::ifstream in(json_file, std::ios::binary);
+  if (!in) fail("{}: cannot open the file for reading", label);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) fail("{}: reading the file failed", label);
+  return parse_scene(text.str(), label, json_file.parent_path());
+}
+
+Scene load_input(const std::filesystem::path& input) {
+  std::string ext = input.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".json") return load_scene(input);
+  Scene scene;
+  scene.source = input.string();
+  scene.materials.push_back(Material{"default", MaterialKind::kOpaque});
+  MeshInstance mesh;
+  mesh.source = input.string();
+  mesh.soup = load_mesh(input);
+  scene.meshes.push_back(std::move(mesh));
+  apply_defaults(scene, false, false, false);
+  return scene;
+}
+
+TriangleSoup scene_triangles(const Scene& scene) {
+  TriangleSoup out;
+  size_t vertices = 0, triangles = 0;
+  for (const MeshInstance& m : scene.meshes) {
+    vertices += m.soup.positions.size();
+    triangles += m.soup.triangles.size();
+  }
+  out.positions.reserve(vertices);
+  out.triangles.reserve(triangles);
+  for (const MeshInstance& m : scene.meshes) {
+    const size_t first = out.triangles.size();
+    out.append(m.soup, m.transform, m.material);
+    // A mirroring transform turns counter-clockwise into clockwise; swap two corners to keep normals outward.
+    if (glm::determinant(glm::mat3(m.transform)) < 0.0f)
+      for (size_t t = first; t < out.triangles.size(); ++t) std::swap(out.triangles[t].y, out.triangles[t].z);
+  }
+  return out;
+}
+
+Bounds scene_bounds(const Scene& scene) {
+  Bounds bounds;
+  for (const MeshInstance& m : scene.meshes) {
+    std::vector<bool> used(m.soup.positions.size(), false);
+    for (const glm::uvec4& t : m.soup.triangles) used[t.x] = used[t.y] = used[t.z] = true;
+    for (size_t i = 0; i < used.size(); ++i)
+      if (used[i]) {
+        const glm::vec4 p = m.transform * glm::vec4(glm::vec3(m.soup.positions[i]), 1.0f);
+        bounds.extend(glm::vec3(p) / p.w);
+      }
+  }
+  return bounds;
+}
+
+}  // namespace voxr

@@ -1,0 +1,186 @@
+// A scene: meshes with materials, one light, one camera, an environment colour and how to fit the grid.
+//
+// Scene file format (JSON; // and /* */ comments allowed). Every key is optional unless marked required;
+// an unknown key anywhere is an error naming its path (e.g. "scene.json: unknown key 'meshes[1].materail'").
+//
+//   {
+//     "materials": [                                  default: one opaque material "default"
+//       {"name": "floor", "kind": "opaque",           name (required, unique), kind (required)
+//        "color": [0.8, 0.8, 0.8]},                   opaque: color in [0,1]             (0.8)
+//       {"name": "glass", "kind": "dielectric",
+//        "ior": 1.5, "absorption": [0.1, 0.2, 0.3]},  dielectric: ior > 0 (1.5), absorption >= 0 per unit (0)
+//       {"name": "leaf", "kind": "sheet",
+//        "color": [0.3, 0.6, 0.2],                    sheet: color in [0,1] (0.8),
+//        "transmittance": [0.5, 0.8, 0.4]}            transmittance per crossing in [0,1] (1)
+//     ],
+//     "meshes": [                                     required, at least one
+//       {"file": "../meshes/bunny.obj",               a mesh file (.obj .off .ply .stl), see below, or
+//        "material": "glass",                         a material name, or a list of names, one per material id
+//                                                     the mesh carries (["bark", "leaf"] for a tree);
+//                                                     default: the first material
+//        "subdivide": 0,                              midpoint subdivision levels (0..8), before transforming
+//        "transform": {"scale": 1.0,                  a number or [x, y, z], no component 0
+//                      "rotate_deg": [0, 0, 0],       about X, then Y, then Z, in degrees
+//                      "translate": [0, 0, 0]}},      applied in this order: scale, rotate, translate
+//       {"generator": "torus",                        torus | sphere | box | vase | tree | plane
+//        "params": {"major": 1, "minor": 0.4},        generator parameters (generators.h)
+//        "material": "floor"}
+//     ],
+//     "light": {"type": "point",                      required when "light" is given: point | directional
+//               "position": [0, 5, 5],                point: required
+//               "direction": [0, -1, 0],              directional: required, non-zero, the way light travels
+//               "intensity": [1, 1, 1]},              >= 0 (1); point lights fall off as 1/distance^2
+//     "camera": {"position": [0, 1, 5],               required when "camera" is given
+//                "look_at": [0, 0, 0],                required when "camera" is given, != position
+//                "up": [0, 1, 0],                     not parallel to look_at - position
+//                "fov_deg": 45,                       vertical field of view in (0, 180)
+//                "width": 512, "height": 512},        image size, 1..16384
+//     "environment": {"color": [0.5, 0.5, 0.5]},      required when "environment" is given, >= 0
+//     "grid": {"res": 256,                            voxels along the longest axis (1..16384), or
+//              "dims": [256, 128, 256],               exact dimensions (not both)
+//              "bounds": [x0, y0, z0, x1, y1, z1],    world box, x0 < x1 etc.; default: fitted to the scene
+//              "margin_voxels": 0.5}                  >= 0, around fitted bounds
+//   }
+//
+// Mesh file paths are relative to the scene file's folder. A path "$VOXR_MESH_DIR/NAME", or a relative path
+// not found next to the scene, is looked up in the folder named by the environment variable VOXR_MESH_DIR
+// (default: data/meshes under the current directory). Material ids are indices into "materials".
+// Without "light", "camera" or "environment", defaults frame the scene's bounds (default_camera,
+// default_light, kDefaultEnvironment).
+#pragma once
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/grid_spec.h"
+#include "core/material.h"
+#include "core/triangle_soup.h"
+
+namespace voxr {
+
+struct Light {
+  std::string type = "point";  // "point" | "directional"
+  glm::vec3 position{0.0f};    // point
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional: unit vector, the way the light travels
+  glm::vec3 intensity{1.0f};   // point: irradiance at distance d is intensity / d^2; directional: irradiance
+};
+
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 5.0f};
+  glm::vec3 look_at{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fov_deg = 45.0f;  // vertical
+  uint32_t width = 512, height = 512;
+};
+
+struct Environment {
+  glm::vec3 color{0.5f};
+};
+
+inline constexpr glm::vec3 kDefaultEnvironment{0.5f};
+
+struct MeshInstance {
+  std::string source;  // the mesh file's resolved path, or "generator:NAME"
+  TriangleSoup soup;   // object space, after subdivision
+  glm::mat4 transform{1.0f};
+  // Scene material id given to every triangle, or TriangleSoup::kKeepMaterial when the soup's own ids are
+  // already scene material ids (a "material" list remaps them at load time).
+  uint32_t material = 0;
+};
+
+struct Scene {
+  std::vector<Material> materials;
+  std::vector<MeshInstance> meshes;
+  Light light;
+  Camera camera;
+  Environment environment;
+  GridRequest grid;
+  bool grid_given = false;  // the scene file had a "grid" object
+  std::string source;       // the scene file, the mesh file, or a description of a built-in scene
+};
+
+// Reads a scene file. Throws voxr::Error naming the file and the key path at fault (or the line and
+// column for JSON syntax errors); mesh loading errors are reported with the mesh's key path too.
+Scene load_scene(const std::filesystem::path& json_file);
+
+// Parses scene JSON text. `label` names the source in errors and becomes Scene::source; relative mesh
+// paths resolve against `base_dir`.
+Scene parse_scene(std::string_view json_text, const std::string& label, const std::filesystem::path& base_dir);
+
+// `.json` -> load_scene. Any other extension: the mesh file as a scene with one opaque material
+// "default", identity transform and default light, camera and environment framing the mesh.
+Scene load_input(const std::filesystem::path& input);
+
+// Every mesh in world space with its material ids, in scene order.
+TriangleSoup scene_triangles(const Scene& scene);
+
+// World-space bounds of all meshes.
+Bounds scene_bounds(const Scene& scene);
+
+// Scale, then rotate about X, Y and Z (degrees, in that order), then translate.
+glm::mat4 make_transform(glm::vec3 scale, glm::vec3 rotate_deg, glm::vec3 translate);
+
+// Camera in front of `bounds` (on +Z, slightly raised) looking at its centre with a 45 degree field of
+// view, far enough to see all of it.
+Camera default_camera(const Bounds& bounds);
+// Point light above, in front of and to the right of `bounds`, bright enough for irradiance ~1 at the centre.
+Light default_light(const Bounds& bounds);
+
+// Reads one JSON object of the scene format. The constructor fails on any key outside `allowed` (suggesting
+// an allowed key spelled alike), so a typo is reported before a missing required key. Errors read
+// "<where>: '<path>.<key>' must be ...", "<where>: missing required key '<path>.<key>'" and
+// "<where>: unknown key '<path>.<key>'".
+class JsonObjectReader {
+ public:
+  // Fails unless `value` is an object whose keys are all in `allowed`. `path` is the object's key path
+  // ("" for the root).
+  JsonObjectReader(const nlohmann::json& value, std::string where, std::string path,
+                   std::initializer_list<std::string_view> allowed);
+
+  const std::string& where() const { return where_; }
+  // "path.key", or "key" at the root.
+  std::string path(std::string_view key) const;
+  bool has(std::string_view key) const;
+  // The value, or nullptr when the key is absent.
+  const nlohmann::json* get(std::string_view key) const;
+
+  // Required (no fallback) or optional values. Numbers must be finite; integers must lie in [lo, hi].
+  float number(std::string_view key, std::optional<float> fallback = std::nullopt) const;
+  int64_t integer(std::string_view key, std::optional<int64_t> fallback, int64_t lo, int64_t hi) const;
+  std::string string(std::string_view key, std::optional<std::string> fallback = std::nullopt) const;
+  glm::vec3 vec3(std::string_view key, std::optional<glm::vec3> fallback = std::nullopt) const;
+  glm::vec2 vec2(std::string_view key, std::optional<glm::vec2> fallback = std::nullopt) const;
+  std::vector<float> numbers(std::string_view key, std::optional<std::vector<float>> fallback = std::nullopt) const;
+
+  // Throws "<where>: '<path>.<key>' <what> (got <value>)" unless `ok`.
+  void require(bool ok, std::string_view key, std::string_view what) const;
+  [[noreturn]] void fail_key(std::string_view key, std::string_view what) const;
+  // Fails when `key` is present: it is allowed in general but not here (`why`, e.g. "is not used by kind
+  // 'opaque'").
+  void forbid(std::string_view key, std::string_view why) const;
+
+ private:
+  const nlohmann::json& required(std::string_view key) const;
+  void check_allowed(std::string_view key) const;
+
+  const nlohmann::json& value_;
+  std::string where_;
+  std::string path_;
+  std::vector<std::string_view> allowed_;
+};
+
+// "where: 'path' <what>" for a value that is not inside an object (an array element, say).
+[[noreturn]] void fail_json_value(const std::string& where, const std::string& path, std::string_view what);
+// The value at `path` as a 3-vector of finite numbers.
+glm::vec3 json_vec3(const nlohmann::json& value, const std::string& where, const std::string& path);
+
+}  // namespace voxr

@@ -1,0 +1,98 @@
+#include "io/nrrd_writer.h"
+
+#include <bit>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "io/volume_writer.h"
+
+namespace voxr {
+
+namespace fs = std::filesystem;
+
+static_assert(std::endian::native == std::endian::little, "the NRRD writer emits host-order data as little");
+
+namespace {
+
+std::string vec_text(const glm::vec3& v) {
+  return fmt::format("({},{},{})", v.x, v.y, v.z);
+}
+
+// `type` is the NRRD type name; `vector` adds a leading 3-vector axis.
+std::string nrrd_header(const GridSpec& spec, const char* type, bool vector, const char* content) {
+  const char* pre = vector ? "none " : "";
+  std::string h = "NRRD0004\n";
+  h += "# Complete NRRD file format specification at:\n# http://teem.sourceforge.net/nrrd/format.html\n";
+  h += fmt::format("content: {}\n", content);
+  h += fmt::format("type: {}\n", type);
+  h += fmt::format("dimension: {}\n", vector ? 4 : 3);
+  h += fmt::format("sizes: {}{} {} {}\n", vector ? "3 " : "", spec.dims.x, spec.dims.y, spec.dims.z);
+  // After `sizes`: VTK's vtkNrrdReader resets the dimension to 3 on reading `space`.
+  h += "space: right-anterior-superior\n";
+  h += fmt::format("space directions: {}{} {} {}\n", pre, vec_text(spec.axes[0] * spec.voxel_size),
+                   vec_text(spec.axes[1] * spec.voxel_size), vec_text(spec.axes[2] * spec.voxel_size));
+  h += fmt::format("kinds: {}domain domain domain\n", vector ? "3-vector " : "");
+  h += fmt::format("centers: {}cell cell cell\n", pre);
+  h += "endian: little\n";
+  h += "encoding: raw\n";
+  h += fmt::format("space origin: {}\n", vec_text(spec.voxel_center_world(0, 0, 0)));
+  h += "\n";
+  return h;
+}
+
+}  // namespace
+
+fs::path nrrd_channel_path(const fs::path& out, Channel channel) {
+  fs::path p = out.parent_path() / out.stem();
+  p += fmt::format(".{}{}", channel_name(channel), out.extension().string());
+  return p;
+}
+
+std::vector<fs::path> write_nrrd(const VoxelGrid& grid, const fs::path& out) {
+  check_output_path(out);
+  check_grid_layout(grid);
+  const GridSpec& spec = grid.spec;
+
+  std::vector<std::unique_ptr<OutputFile>> files;
+  files.push_back(std::make_unique<OutputFile>(out));
+  files.back()->write(nrrd_header(spec, "uint8", false, "voxr occupancy"));
+  write_dense<uint8_t>(*files.back(), grid, 1, [](uint8_t* v, uint64_t) { *v = 1; });
+  files.back()->close();
+
+  if (grid.channels.has(Channel::kCount)) {
+    files.push_back(std::make_unique<OutputFile>(nrrd_channel_path(out, Channel::kCount)));
+    files.back()->write(nrrd_header(spec, "uint32", false, "voxr count"));
+    write_dense<uint32_t>(*files.back(), grid, 1, [&](uint32_t* v, uint64_t r) { *v = grid.count[r]; });
+    files.back()->close();
+  }
+  if (grid.channels.has(Channel::kNormal)) {
+    const NormalChannel normal(grid);
+    files.push_back(std::make_unique<OutputFile>(nrrd_channel_path(out, Channel::kNormal)));
+    files.back()->write(nrrd_header(spec, "float", true, "voxr normal"));
+    write_dense<float>(*files.back(), grid, 3, [&](float* v, uint64_t r) {
+      const glm::vec3 n = normal(r);
+      v[0] = n.x;
+      v[1] = n.y;
+      v[2] = n.z;
+    });
+    files.back()->close();
+  }
+  if (grid.channels.has(Channel::kMaterial)) {
+    files.push_back(std::make_unique<OutputFile>(nrrd_channel_path(out, Channel::kMaterial)));
+    files.back()->write(nrrd_header(spec, "uint32", false, "voxr material"));
+    write_dense<uint32_t>(*files.back(), grid, 1, [&](uint32_t* v, uint64_t r) { *v = grid.material[r]; });
+    files.back()->close();
+  }
+
+  std::vector<fs::path> written;
+  for (auto& f : files) {
+    f->rename();
+    written.push_back(f->path());
+  }
+  return written;
+}
+
+}  // namespace voxr

@@ -1,0 +1,124 @@
+#include "io/volume_writer.h"
+
+#include <unistd.h>
+
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "io/binvox_writer.h"
+#include "io/nrrd_writer.h"
+#include "io/vox_writer.h"
+#include "io/vti_writer.h"
+
+namespace voxr {
+
+namespace fs = std::filesystem;
+
+std::vector<fs::path> write_volume(const VoxelGrid& grid, const fs::path& out) {
+  std::string ext = out.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".nrrd") return write_nrrd(grid, out);
+  if (ext == ".vti") return {write_vti(grid, out)};
+  if (ext == ".binvox") return {write_binvox(grid, out)};
+  if (ext == ".vox") return {write_vox(grid, out)};
+  if (ext.empty())
+    fail("{}: no extension to choose the volume format by (.nrrd, .vti, .binvox, .vox)", out.string());
+  fail("{}: unknown volume format '{}' (formats: .nrrd, .vti, .binvox, .vox)", out.string(),
+       out.extension().string());
+}
+
+void check_output_path(const fs::path& out) {
+  if (out.filename().empty()) fail("{}: the output path names a folder, not a file", out.string());
+  const fs::path folder = out.parent_path();
+  std::error_code ec;
+  if (!folder.empty() && !fs::is_directory(folder, ec))
+    fail("{}: folder '{}' does not exist", out.string(), folder.string());
+  if (fs::is_directory(out, ec)) fail("{}: is a folder", out.string());
+}
+
+void check_grid_layout(const VoxelGrid& grid) {
+  VOXR_CHECK(grid.spec.voxel_count() > 0);
+  const uint64_t words = (grid.spec.voxel_count() + 31) / 32;
+  VOXR_CHECK_LE(words, uint64_t(grid.occ.size()));
+  uint64_t set = 0;
+  for (uint64_t w = 0; w < words; ++w) set += uint64_t(__builtin_popcount(grid.occ[w]));
+  VOXR_CHECK_EQ(set, grid.voxels_set);
+  if (const uint32_t tail = uint32_t(grid.spec.voxel_count() & 31); tail != 0)
+    VOXR_CHECK_EQ(grid.occ[words - 1] >> tail, 0u);
+  if (grid.channels.has(Channel::kCount)) VOXR_CHECK_EQ(uint64_t(grid.count.size()), grid.voxels_set);
+  if (grid.channels.has(Channel::kMaterial)) VOXR_CHECK_EQ(uint64_t(grid.material.size()), grid.voxels_set);
+  if (grid.channels.has(Channel::kNormal))
+    VOXR_CHECK(grid.normal.size() == grid.voxels_set || grid.normal_sum.size() == grid.voxels_set);
+}
+
+// ---- OutputFile ------------------------------------------------------------------------------------------
+
+OutputFile::OutputFile(fs::path path) : path_(std::move(path)) {
+  check_output_path(path_);
+  temp_ = path_;
+  temp_ += fmt::format(".{}.tmp", ::getpid());
+  file_ = std::fopen(temp_.c_str(), "wb");
+  if (!file_) fail_io("cannot create the file");
+  std::setvbuf(file_, nullptr, _IOFBF, size_t(1) << 20);
+}
+
+OutputFile::~OutputFile() {
+  if (file_) std::fclose(file_);
+  if (!renamed_) {
+    std::error_code ec;
+    fs::remove(temp_, ec);
+  }
+}
+
+void OutputFile::fail_io(std::string_view what) const {
+  const int err = errno;
+  fail("{}: {}: {}", path_.string(), what, err ? std::strerror(err) : "unknown error");
+}
+
+void OutputFile::write(const void* data, size_t bytes) {
+  VOXR_CHECK(file_ != nullptr);
+  errno = 0;
+  if (bytes != 0 && std::fwrite(data, 1, bytes, file_) != bytes) fail_io("write failed");
+}
+
+void OutputFile::close() {
+  if (!file_) return;
+  errno = 0;
+  const bool flushed = std::fflush(file_) == 0 && !std::ferror(file_);
+  const int flush_errno = errno;
+  const bool closed = std::fclose(file_) == 0;
+  file_ = nullptr;
+  if (!flushed || !closed) {
+    if (!flushed) errno = flush_errno;
+    fail_io("write failed");
+  }
+}
+
+void OutputFile::rename() {
+  close();
+  if (renamed_) return;
+  errno = 0;
+  if (std::rename(temp_.c_str(), path_.c_str()) != 0) fail_io("cannot move the finished file into place");
+  renamed_ = true;
+}
+
+// ---- NormalChannel ---------------------------------------------------------------------------------------
+
+NormalChannel::NormalChannel(const VoxelGrid& grid)
+    : grid_(grid), from_sum_(grid.normal.size() != grid.voxels_set) {
+  VOXR_CHECK(!from_sum_ || grid.normal_sum.size() == grid.voxels_set);
+}
+
+glm::vec3 NormalChannel::operator()(uint64_t rank) const {
+  if (!from_sum_) return grid_.normal[rank];
+  const glm::vec3 sum(grid_.normal_sum[rank]);
+  const float len = glm::length(sum);
+  return len > 0.0f ? sum / len : glm::vec3(0.0f);
+}
+
+}  // namespace voxr

@@ -1,0 +1,100 @@
+#include "io/vti_writer.h"
+
+#include <bit>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "io/volume_writer.h"
+
+namespace voxr {
+
+namespace fs = std::filesystem;
+
+static_assert(std::endian::native == std::endian::little, "the VTI writer emits host-order data as little");
+
+namespace {
+
+struct VtiArray {
+  Channel channel;
+  const char* name;
+  const char* type;
+  uint32_t components;
+  uint64_t value_bytes;  // bytes per component
+};
+
+}  // namespace
+
+fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
+  check_output_path(out);
+  check_grid_layout(grid);
+  const GridSpec& spec = grid.spec;
+  const uint64_t n = spec.voxel_count();
+
+  std::vector<VtiArray> arrays{{Channel::kOcc, "occupancy", "UInt8", 1, 1}};
+  if (grid.channels.has(Channel::kCount)) arrays.push_back({Channel::kCount, "count", "UInt32", 1, 4});
+  if (grid.channels.has(Channel::kNormal)) arrays.push_back({Channel::kNormal, "normal", "Float32", 3, 4});
+  if (grid.channels.has(Channel::kMaterial))
+    arrays.push_back({Channel::kMaterial, "material", "UInt32", 1, 4});
+
+  const glm::vec3 origin = spec.voxel_center_world(0, 0, 0);
+  const std::string extent = fmt::format("0 {} 0 {} 0 {}", spec.dims.x - 1, spec.dims.y - 1, spec.dims.z - 1);
+  std::string direction;
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col)
+      direction += fmt::format("{}{}", direction.empty() ? "" : " ", spec.axes[col][row]);
+
+  std::string xml = "<?xml version=\"1.0\"?>\n";
+  xml += "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
+  xml += fmt::format(
+      "  <ImageData WholeExtent=\"{}\" Origin=\"{} {} {}\" Spacing=\"{} {} {}\" Direction=\"{}\">\n", extent,
+      origin.x, origin.y, origin.z, spec.voxel_size, spec.voxel_size, spec.voxel_size, direction);
+  xml += fmt::format("    <Piece Extent=\"{}\">\n", extent);
+  xml += fmt::format("      <PointData Scalars=\"occupancy\"{}>\n",
+                     grid.channels.has(Channel::kNormal) ? " Vectors=\"normal\"" : "");
+  uint64_t offset = 0;
+  for (const VtiArray& a : arrays) {
+    xml += fmt::format(
+        "        <DataArray type=\"{}\" Name=\"{}\"{} format=\"appended\" offset=\"{}\"/>\n", a.type, a.name,
+        a.components > 1 ? fmt::format(" NumberOfComponents=\"{}\"", a.components) : "", offset);
+    offset += sizeof(uint64_t) + n * a.components * a.value_bytes;
+  }
+  xml += "      </PointData>\n";
+  xml += "      <CellData>\n      </CellData>\n";
+  xml += "    </Piece>\n";
+  xml += "  </ImageData>\n";
+  xml += "  <AppendedData encoding=\"raw\">\n   _";
+
+  OutputFile file(out);
+  file.write(xml);
+  for (const VtiArray& a : arrays) {
+    file.write_pod(uint64_t(n * a.components * a.value_bytes));
+    switch (a.channel) {
+      case Channel::kOcc:
+        write_dense<uint8_t>(file, grid, 1, [](uint8_t* v, uint64_t) { *v = 1; });
+        break;
+      case Channel::kCount:
+        write_dense<uint32_t>(file, grid, 1, [&](uint32_t* v, uint64_t r) { *v = grid.count[r]; });
+        break;
+      case Channel::kNormal: {
+        const NormalChannel normal(grid);
+        write_dense<float>(file, grid, 3, [&](float* v, uint64_t r) {
+          const glm::vec3 nv = normal(r);
+          v[0] = nv.x;
+          v[1] = nv.y;
+          v[2] = nv.z;
+        });
+        break;
+      }
+      case Channel::kMaterial:
+        write_dense<uint32_t>(file, grid, 1, [&](uint32_t* v, uint64_t r) { *v = grid.material[r]; });
+        break;
+    }
+  }
+  file.write("\n  </AppendedData>\n</VTKFile>\n");
+  file.commit();
+  return out;
+}
+
+}  // namespace voxr

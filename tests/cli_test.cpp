@@ -1,0 +1,106 @@
+// The voxr executable end to end: success writes the files and the report; bad input exits non-zero
+// with one line that names what is wrong.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+fs::path scratch() {
+  const fs::path dir = fs::path(testing::TempDir()) / "voxr_cli_test";
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+Result run(const std::string& args) {
+  const fs::path out = scratch() / "stdout.txt", err = scratch() / "stderr.txt";
+  const std::string cmd = std::string(VOXR_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+fs::path write_file(const std::string& name, const std::string& content) {
+  const fs::path p = scratch() / name;
+  std::ofstream(p, std::ios::binary) << content;
+  return p;
+}
+
+void expect_one_line_error(const Result& r, const std::string& needle) {
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find(needle), std::string::npos) << "stderr: " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr: " << r.err;
+}
+
+const std::string kTetra = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+
+TEST(Cli, VoxelizeWritesVolumesAndReport) {
+  const fs::path mesh = write_file("tetra.obj", kTetra);
+  const fs::path out = scratch() / "tetra.nrrd", report = scratch() / "tetra.json";
+  const Result r = run("voxelize " + mesh.string() + " --res 32 --channels occ,count,normal,material -o " +
+                       out.string() + " --report " + report.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_TRUE(fs::exists(scratch() / "tetra.count.nrrd"));
+  const nlohmann::json j = nlohmann::json::parse(slurp(report));
+  for (const char* key : {"device", "triangles", "dims", "copies", "voxels_set"}) EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["triangles"], 4);
+  EXPECT_GT(j["voxels_set"].get<uint64_t>(), 0u);
+  for (const char* key : {"upload", "kernels", "total", "stages"}) EXPECT_TRUE(j["ms"].contains(key)) << key;
+  EXPECT_TRUE(j["ms"]["stages"].contains("raster"));
+}
+
+TEST(Cli, MissingFile) { expect_one_line_error(run("voxelize /nonexistent/mesh.obj"), "/nonexistent/mesh.obj"); }
+
+TEST(Cli, GarbledFile) {
+  const fs::path p = write_file("garbage.off", std::string("\x01\x02OFF\xff\xfe garbage \x00\x13", 18));
+  expect_one_line_error(run("voxelize " + p.string()), p.string());
+}
+
+TEST(Cli, EmptyMesh) {
+  const fs::path p = write_file("empty.obj", "# nothing here\n");
+  expect_one_line_error(run("voxelize " + p.string()), p.string());
+}
+
+TEST(Cli, NanVertex) {
+  const fs::path p = write_file("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+  expect_one_line_error(run("voxelize " + p.string()), p.string());
+}
+
+TEST(Cli, ZeroResolution) {
+  const fs::path p = write_file("tetra2.obj", kTetra);
+  expect_one_line_error(run("voxelize " + p.string() + " --res 0"), "--res");
+}
+
+TEST(Cli, AbsurdSizeExceedsMemory) {
+  const fs::path p = write_file("tetra3.obj", kTetra);
+  expect_one_line_error(run("voxelize " + p.string() + " --dims 16384,16384,16384"), "MiB");
+}
+
+TEST(Cli, BadChannelModeAndExtension) {
+  const fs::path p = write_file("tetra4.obj", kTetra);
+  expect_one_line_error(run("voxelize " + p.string() + " --channels occ,colour"), "colour");
+  expect_one_line_error(run("voxelize " + p.string() + " --mode sideways"), "sideways");
+  expect_one_line_error(run("voxelize " + p.string() + " -o " + (scratch() / "x.png").string()), "x.png");
+  expect_one_line_error(run("voxelize " + p.string() + " --dims 4,5,6 -o " + (scratch() / "x.binvox").string()),
+                        "x.binvox");
+}
+
+}  // namespace
