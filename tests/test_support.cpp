@@ -8,6 +8,16 @@
 
 namespace voxr::test {
 
+namespace {
+// Before any OpenCL call and before the CLI tests start the voxr binary: PoCL compiles each kernel on
+// first use, and a cache in the build tree lets later runs reuse the binaries. Values already set win.
+const bool kEnvironment = [] {
+  setenv("POCL_CACHE_DIR", VOXR_BINARY_DIR "/pocl-cache", 0);
+  setenv("VOXR_MESH_DIR", VOXR_SOURCE_DIR "/data/meshes", 0);
+  return true;
+}();
+}  // namespace
+
 ClRuntime& runtime() {
   static std::unique_ptr<ClRuntime> rt = std::make_unique<ClRuntime>("");
   return *rt;
@@ -80,7 +90,7 @@ TriangleSoup box_soup(glm::vec3 lo, glm::vec3 hi, uint32_t material) {
 
 std::string mesh_path(const std::string& name) {
   const char* dir = std::getenv("VOXR_MESH_DIR");
-  const std::filesystem::path p = std::filesystem::path(dir ? dir : "data/meshes") / name;
+  const std::filesystem::path p = std::filesystem::path(dir ? dir : VOXR_SOURCE_DIR "/data/meshes") / name;
   return std::filesystem::exists(p) ? p.string() : std::string();
 }
 

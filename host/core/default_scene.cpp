@@ -33,6 +33,8 @@ std::string_view default_scene_json() {
   return kJson;
 }
 
-Scene default_scene() { return parse_scene(default_scene_json(), "built-in default scene", {}); }
+Scene default_scene() {
+  return parse_scene(default_scene_json(), "built-in default scene", {});
+}
 
 }  // namespace voxr

@@ -80,7 +80,9 @@ float profile_radius(const std::vector<float>& radii, float t) {
 
 // Uniform float in [0, 1) from the generator's 32-bit output; std::mt19937's sequence is fixed by the
 // standard, unlike the standard distributions, so trees are identical across standard libraries.
-float uniform(std::mt19937& rng) { return float(rng() >> 8) * (1.0f / 16777216.0f); }
+float uniform(std::mt19937& rng) {
+  return float(rng() >> 8) * (1.0f / 16777216.0f);
+}
 
 }  // namespace
 
@@ -123,7 +125,8 @@ TriangleSoup make_box(glm::vec3 lo, glm::vec3 hi) {
   VOXR_CHECK(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z);
   TriangleSoup soup;
   // Corner i has x from bit 0, y from bit 1, z from bit 2.
-  for (int i = 0; i < 8; ++i) add_vertex(soup, glm::vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z));
+  for (int i = 0; i < 8; ++i)
+    add_vertex(soup, glm::vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z));
   add_quad(soup, 0, 4, 6, 2);  // -x
   add_quad(soup, 1, 3, 7, 5);  // +x
   add_quad(soup, 0, 1, 5, 4);  // -y
@@ -206,7 +209,8 @@ TriangleSoup make_plane(glm::vec2 size, int subdivisions) {
   soup.triangles.reserve(size_t(n) * n * 2);
   for (int k = 0; k <= n; ++k)    // along z
     for (int i = 0; i <= n; ++i)  // along x
-      add_vertex(soup, glm::vec3(size.x * (float(i) / float(n) - 0.5f), 0.0f, size.y * (float(k) / float(n) - 0.5f)));
+      add_vertex(soup, glm::vec3(size.x * (float(i) / float(n) - 0.5f), 0.0f,
+                                 size.y * (float(k) / float(n) - 0.5f)));
   auto at = [&](int i, int k) { return uint32_t(k * (n + 1) + i); };
   // (x,z) -> (x,z+1) -> (x+1,z+1) -> (x+1,z) is counter-clockwise seen from +Y.
   for (int k = 0; k < n; ++k)
@@ -239,7 +243,8 @@ TriangleSoup make_generated(const std::string& name, const nlohmann::json& param
   }
   if (name == "sphere") {
     const JsonObjectReader in(object, where, path, {"radius", "stacks", "slices"});
-    return make_uv_sphere(positive(in, "radius", 1.0f), count(in, "stacks", 16, 2), count(in, "slices", 32, 3));
+    return make_uv_sphere(positive(in, "radius", 1.0f), count(in, "stacks", 16, 2),
+                          count(in, "slices", 32, 3));
   }
   if (name == "box") {
     const JsonObjectReader in(object, where, path, {"lo", "hi"});
@@ -257,7 +262,8 @@ TriangleSoup make_generated(const std::string& name, const nlohmann::json& param
     p.rows = count(in, "rows", p.rows, 1);
     in.require(p.profile.size() >= 2, "profile", "needs at least 2 radii");
     for (float r : p.profile)
-      in.require(r > p.thickness, "profile", fmt::format("must have every radius above the thickness {}", p.thickness));
+      in.require(r > p.thickness, "profile",
+                 fmt::format("must have every radius above the thickness {}", p.thickness));
     in.require(p.height > 2.0f * p.thickness, "height", "must exceed twice the thickness");
     return make_vase(p);
   }

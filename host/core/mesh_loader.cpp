@@ -8,14 +8,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <mutex>
 #include <optional>
 #include <string_view>
-#include <vector>
-#include <fstream>
-#include <iostream>
-#include <mutex>
-#include <sstream>
 #include <system_error>
+#include <vector>
 
 #include "core/error.h"
 
@@ -37,7 +35,6 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
   explicit SoupImporter(TriangleSoup& soup) : soup_(soup) {}
 
   size_t faces_read() const { return faces_read_; }
-  size_t small_faces() const { return small_faces_; }
   // First face that named a vertex the file does not have: {face, index}; face == SIZE_MAX when none.
   std::pair<size_t, int> bad_index() const { return bad_index_; }
 
@@ -56,10 +53,7 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
 
   FaceHandle add_face(const VHandles& vs) override {
     const size_t face = faces_read_++;
-    if (vs.size() < 3) {
-      ++small_faces_;
-      return FaceHandle();
-    }
+    if (vs.size() < 3) return FaceHandle();
     for (const VertexHandle& v : vs)
       if (!v.is_valid() || size_t(v.idx()) >= soup_.positions.size()) {
         if (bad_index_.first == SIZE_MAX) bad_index_ = {face, v.idx()};
@@ -119,61 +113,43 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
  private:
   TriangleSoup& soup_;
   size_t faces_read_ = 0;
-  size_t small_faces_ = 0;
   std::pair<size_t, int> bad_index_{SIZE_MAX, 0};
 };
 
-// While alive, OpenMesh's diagnostic streams (omerr, omlog, omout) write into `text` instead of the
-// console. The streams are global, so the caller holds a lock.
-class CaptureOpenMeshOutput {
+// While alive, OpenMesh's diagnostic streams (omerr, omlog, omout) print nothing. The streams are global,
+// so the caller holds a lock. (Redirecting them into a string would need mostream::connect/disconnect,
+// and OpenMesh 9's disconnect leaks the target wrapper on every call.)
+class SilenceOpenMesh {
  public:
-  CaptureOpenMeshOutput() {
+  SilenceOpenMesh() {
     for (Stream& s : streams_) {
-      s.had_cerr = s.stream.disconnect(std::cerr);
-      s.had_clog = s.stream.disconnect(std::clog);
-      s.had_cout = s.stream.disconnect(std::cout);
-      s.stream.connect(captured_);
+      s.was_enabled = s.stream.is_enabled();
+      s.stream.disable();
     }
   }
-  ~CaptureOpenMeshOutput() {
+  ~SilenceOpenMesh() {
     for (Stream& s : streams_) {
-      s.stream.flush();  // a partial line would otherwise be printed by the next user
-      s.stream.disconnect(captured_);
-      if (s.had_cerr) s.stream.connect(std::cerr);
-      if (s.had_clog) s.stream.connect(std::clog);
-      if (s.had_cout) s.stream.connect(std::cout);
+      s.stream.flush();  // drops a partial line, which the next enabled write would otherwise print
+      if (s.was_enabled) s.stream.enable();
     }
   }
-  CaptureOpenMeshOutput(const CaptureOpenMeshOutput&) = delete;
-  CaptureOpenMeshOutput& operator=(const CaptureOpenMeshOutput&) = delete;
-
-  // The first non-empty line written so far, without OpenMesh's "[Reader] : " style prefix noise.
-  std::string first_line() {
-    for (Stream& s : streams_) s.stream.flush();
-    std::istringstream in(captured_.str());
-    std::string line;
-    while (std::getline(in, line)) {
-      line.erase(0, line.find_first_not_of(" \t\r"));
-      line.erase(line.find_last_not_of(" \t\r") + 1);
-      if (!line.empty()) return line;
-    }
-    return {};
-  }
+  SilenceOpenMesh(const SilenceOpenMesh&) = delete;
+  SilenceOpenMesh& operator=(const SilenceOpenMesh&) = delete;
 
  private:
   struct Stream {
     OpenMesh::mostream& stream;
-    bool had_cerr = false, had_clog = false, had_cout = false;
+    bool was_enabled = true;
   };
-  std::ostringstream captured_;
   Stream streams_[3] = {{omerr()}, {omlog()}, {omout()}};
 };
 
 // ---------------------------------------------------------------------------------------------------------
-// Text pre-check. OpenMesh's ASCII readers use stream extraction and do not check it: a vertex line that
-// does not parse ("nan", "1.0x", a truncated file) is silently dropped (OBJ), read as zero (PLY, STL) or
-// read as uninitialised memory (OFF). So before OpenMesh reads a text file, every number the geometry
-// depends on is checked here, and the counts a header promises are returned to be compared afterwards.
+// Pre-checks. OpenMesh's ASCII readers use stream extraction and do not check it: a vertex line that does
+// not parse ("nan", "1.0x", a truncated file) is silently dropped (OBJ), read as zero (PLY, STL) or read
+// as uninitialised memory (OFF); its binary readers read past the end of a truncated file. So before
+// OpenMesh reads a file, every number the geometry depends on and the file's structure are checked here,
+// and the counts a header promises are returned to be compared afterwards.
 
 struct Expected {
   std::optional<size_t> vertices;
@@ -205,7 +181,9 @@ class Lines {
   bool done_ = false;
 };
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
 
 // Splits `line` at whitespace, dropping everything from `comment` on (when comment != 0).
 void split(std::string_view line, char comment, std::vector<std::string_view>& tokens) {
@@ -228,11 +206,19 @@ std::string printable(std::string_view token) {
   return token.size() > 24 ? s + "..." : s;
 }
 
-bool finite_number(std::string_view token) {
+// Parses a whole token as a number that is finite as a float (the soup's precision); false otherwise.
+bool parse_float(std::string_view token, float& out) {
   if (token.size() > 1 && token[0] == '+') token.remove_prefix(1);
   double value = 0.0;
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  return ec == std::errc() && end == token.data() + token.size() && std::isfinite(value);
+  if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(float(value))) return false;
+  out = float(value);
+  return true;
+}
+
+bool finite_number(std::string_view token) {
+  float unused;
+  return parse_float(token, unused);
 }
 
 // A vertex line "<keyword> x y z ...": the three coordinates must be finite numbers.
@@ -240,8 +226,7 @@ void check_coordinates(const std::string& name, size_t line, const std::vector<s
   if (tokens.size() < 4) fail("{}: line {}: a vertex needs three coordinates", name, line);
   for (size_t k = 1; k <= 3; ++k)
     if (!finite_number(tokens[k]))
-      fail("{}: line {}: vertex coordinate '{}' is not a finite number", name, line,
-           printable(tokens[k]));
+      fail("{}: line {}: vertex coordinate '{}' is not a finite number", name, line, printable(tokens[k]));
 }
 
 Expected check_obj(const std::string& name, std::string_view text) {
@@ -272,7 +257,8 @@ Expected check_stl(const std::string& name, std::string_view text) {
         float corners[9];
         std::memcpy(corners, text.data() + 84 + 50 * size_t(t) + 12, sizeof corners);
         for (float c : corners)
-          if (!std::isfinite(c)) fail("{}: triangle {} has a vertex coordinate that is not finite ({})", name, t, c);
+          if (!std::isfinite(c))
+            fail("{}: triangle {} has a vertex coordinate that is not finite ({})", name, t, c);
       }
       return {};
     }
@@ -306,8 +292,7 @@ size_t parse_count(const std::string& name, size_t line, std::string_view token,
   size_t value = 0;
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
   if (ec != std::errc() || end != token.data() + token.size())
-    fail("{}: line {}: the {} count '{}' is not a non-negative integer", name, line, what,
-         printable(token));
+    fail("{}: line {}: the {} count '{}' is not a non-negative integer", name, line, what, printable(token));
   return value;
 }
 
@@ -361,7 +346,7 @@ Expected read_off(const std::string& name, std::string_view text) {
       if (tokens.size() < 3)
         fail("{}: line {}: vertex {} needs three coordinates", name, number, soup.positions.size());
       glm::vec4 p(0.0f, 0.0f, 0.0f, 1.0f);
-      for (int c = 0; c < 3; ++c) std::from_chars(tokens[c].data(), tokens[c].data() + tokens[c].size(), p[c]);
+      for (int c = 0; c < 3; ++c) parse_float(tokens[c], p[c]);  // checked above
       soup.positions.push_back(p);
       continue;
     }
@@ -392,7 +377,7 @@ Expected read_off(const std::string& name, std::string_view text) {
 
 struct PlyProperty {
   std::string name;
-  int size = 0;        // bytes of a scalar, or of each list item
+  int size = 0;  // bytes of a scalar, or of each list item
   bool floating = false;
   int count_size = 0;  // lists: bytes of the item count; 0 for scalars
 };
@@ -416,7 +401,8 @@ std::pair<int, bool> ply_type(std::string_view type) {
 // Reads an unsigned integer or a float of `size` bytes at `p` in the file's byte order.
 uint64_t ply_uint(const char* p, int size, bool big_endian) {
   uint64_t v = 0;
-  for (int i = 0; i < size; ++i) v |= uint64_t(uint8_t(p[big_endian ? i : size - 1 - i])) << (8 * (size - 1 - i));
+  for (int i = 0; i < size; ++i)
+    v |= uint64_t(uint8_t(p[big_endian ? i : size - 1 - i])) << (8 * (size - 1 - i));
   return v;
 }
 
@@ -441,7 +427,8 @@ void check_ply_binary(const std::string& name, std::string_view body, const std:
     size_t row_min = 0;
     for (const PlyProperty& p : e.properties) row_min += p.count_size ? p.count_size : p.size;
     if (row_min > 0 && e.count > (body.size() - at) / row_min)
-      fail("{}: the header declares {} {} elements but the file is too short for them", name, e.count, e.name);
+      fail("{}: the header declares {} {} elements but the file is too short for them", name, e.count,
+           e.name);
     for (size_t i = 0; i < e.count; ++i)
       for (const PlyProperty& p : e.properties) {
         size_t bytes = p.size;
@@ -452,7 +439,8 @@ void check_ply_binary(const std::string& name, std::string_view body, const std:
           at += p.count_size;
         }
         if (body.size() - at < bytes) fail("{}: the file ends inside {} {} of {}", name, e.name, i, e.count);
-        if (e.name == "vertex" && !p.count_size && p.floating && (p.name == "x" || p.name == "y" || p.name == "z")) {
+        if (e.name == "vertex" && !p.count_size && p.floating &&
+            (p.name == "x" || p.name == "y" || p.name == "z")) {
           const double v = ply_float(body.data() + at, p.size, big_endian);
           if (!std::isfinite(float(v)))
             fail("{}: vertex {} has coordinate {} = {}, which is not a finite float", name, i, p.name, v);
@@ -478,8 +466,8 @@ Expected check_ply(const std::string& name, std::string_view text) {
       fail("{}: line 1: a PLY file starts with the line 'ply'", name);
     if (tokens.empty()) continue;
     if (tokens[0] == "format") {
-      if (tokens.size() < 2 || (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" &&
-                                tokens[1] != "binary_big_endian"))
+      if (tokens.size() < 2 ||
+          (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" && tokens[1] != "binary_big_endian"))
         fail("{}: line {}: unknown PLY format", name, number);
       format = tokens[1];
     } else if (tokens[0] == "element") {
@@ -489,15 +477,18 @@ Expected check_ply(const std::string& name, std::string_view text) {
       if (elements.empty()) fail("{}: line {}: a property before any element", name, number);
       PlyProperty p;
       const bool list = tokens.size() == 5 && tokens[1] == "list";
-      if (!list && tokens.size() != 3) fail("{}: line {}: a property line reads 'property TYPE NAME'", name, number);
+      if (!list && tokens.size() != 3)
+        fail("{}: line {}: a property line reads 'property TYPE NAME'", name, number);
       const auto [size, floating] = ply_type(tokens[list ? 3 : 1]);
-      if (size == 0) fail("{}: line {}: unknown PLY type '{}'", name, number, printable(tokens[list ? 3 : 1]));
+      if (size == 0)
+        fail("{}: line {}: unknown PLY type '{}'", name, number, printable(tokens[list ? 3 : 1]));
       p.size = size;
       p.floating = floating;
       if (list) {
         const auto [count_size, count_floating] = ply_type(tokens[2]);
         if (count_size == 0 || count_floating)
-          fail("{}: line {}: a list count must have an integer type, not '{}'", name, number, printable(tokens[2]));
+          fail("{}: line {}: a list count must have an integer type, not '{}'", name, number,
+               printable(tokens[2]));
         p.count_size = count_size;
       }
       p.name = std::string(tokens.back());
@@ -517,7 +508,8 @@ Expected check_ply(const std::string& name, std::string_view text) {
   if (format == "ascii") {
     // An ASCII body holds one element per line; fewer lines than elements means a truncated file.
     const size_t rows = check_all_numbers(name, lines, 0);
-    if (rows < total) fail("{}: the header declares {} elements but the file ends after {}", name, total, rows);
+    if (rows < total)
+      fail("{}: the header declares {} elements but the file ends after {}", name, total, rows);
   } else {
     check_ply_binary(name, text.substr(std::min(header_bytes, text.size())), elements,
                      format == "binary_big_endian");
@@ -568,7 +560,8 @@ bool is_mesh_file(const std::filesystem::path& file) {
 TriangleSoup load_mesh(const std::filesystem::path& file) {
   const std::string name = file.string();
   if (!is_mesh_file(file))
-    fail("{}: unsupported mesh format '{}' (supported: {})", name, file.extension().string(), supported_list());
+    fail("{}: unsupported mesh format '{}' (supported: {})", name, file.extension().string(),
+         supported_list());
 
   std::error_code ec;
   const auto status = std::filesystem::status(file, ec);
@@ -589,30 +582,29 @@ TriangleSoup load_mesh(const std::filesystem::path& file) {
 
   TriangleSoup soup;
   SoupImporter importer(soup);
-  std::string diagnostic;
   bool ok = false;
   {
     std::lock_guard<std::mutex> lock(openmesh_mutex());
-    CaptureOpenMeshOutput capture;
+    SilenceOpenMesh silence;
     OpenMesh::IO::Options options;  // positions and faces only
     ok = OpenMesh::IO::IOManager().read(name, importer, options);
-    diagnostic = capture.first_line();
   }
 
   std::string format = ext.substr(1);
-  std::transform(format.begin(), format.end(), format.begin(), [](unsigned char c) { return char(std::toupper(c)); });
-  const std::string quoted = diagnostic.empty() ? "" : fmt::format(" (OpenMesh: {})", diagnostic);
-  if (!ok) fail("{}: cannot parse the file as {}{}", name, format, quoted);
+  std::transform(format.begin(), format.end(), format.begin(),
+                 [](unsigned char c) { return char(std::toupper(c)); });
+  if (!ok) fail("{}: OpenMesh cannot parse the file as {}", name, format);
   if (const auto [face, index] = importer.bad_index(); face != SIZE_MAX)
     fail("{}: face {} uses vertex {} but the file has {} vertices", name, face, index, soup.positions.size());
   if (expected.vertices && *expected.vertices != soup.positions.size())
-    fail("{}: the file declares {} vertices but {} were read", name, *expected.vertices, soup.positions.size());
+    fail("{}: the file declares {} vertices but {} were read", name, *expected.vertices,
+         soup.positions.size());
   if (expected.faces && *expected.faces != importer.faces_read())
     fail("{}: the file declares {} faces but {} were read", name, *expected.faces, importer.faces_read());
   if (soup.triangles.empty()) {
     if (importer.faces_read() > 0)
       fail("{}: no triangles: all {} faces have fewer than 3 vertices", name, importer.faces_read());
-    fail("{}: no triangles found; is it a valid {} file?{}", name, format, quoted);
+    fail("{}: no triangles found; is it a valid {} file?", name, format);
   }
   validate_soup(soup, name);
   return soup;

@@ -65,14 +65,14 @@ void fail_json_value(const std::string& where, const std::string& path, std::str
 }
 
 glm::vec3 json_vec3(const json& value, const std::string& where, const std::string& path) {
-  if (!value.is_array() || value.size() != 3 || !std::all_of(value.begin(), value.end(), [](const json& v) {
-        return v.is_number();
-      }))
+  if (!value.is_array() || value.size() != 3 ||
+      !std::all_of(value.begin(), value.end(), [](const json& v) { return v.is_number(); }))
     fail_json_value(where, path, fmt::format("must be an array of 3 numbers (got {})", shown(value)));
   glm::vec3 v;
   for (int c = 0; c < 3; ++c) {
     const double d = value[c].get<double>();
-    if (!std::isfinite(float(d))) fail_json_value(where, path, fmt::format("must be finite (got {})", shown(value)));
+    if (!std::isfinite(float(d)))
+      fail_json_value(where, path, fmt::format("must be finite (got {})", shown(value)));
     v[c] = float(d);
   }
   return v;
@@ -82,7 +82,8 @@ JsonObjectReader::JsonObjectReader(const json& value, std::string where, std::st
                                    std::initializer_list<std::string_view> allowed)
     : value_(value), where_(std::move(where)), path_(std::move(path)), allowed_(allowed) {
   if (!value_.is_object())
-    fail("{}: '{}' must be an object (got {})", where_, path_.empty() ? "the top level" : path_, shown(value_));
+    fail("{}: '{}' must be an object (got {})", where_, path_.empty() ? "the top level" : path_,
+         shown(value_));
   for (const auto& item : value_.items()) {
     const std::string& key = item.key();
     if (std::find(allowed_.begin(), allowed_.end(), key) != allowed_.end()) continue;
@@ -99,12 +100,15 @@ JsonObjectReader::JsonObjectReader(const json& value, std::string where, std::st
       if (const size_t d = edit_distance(key, a); d < best_distance) best_distance = d, best = a;
     }
     if (!best.empty() && best_distance <= std::max<size_t>(2, best.size() / 3))
-      fail("{}: unknown key '{}' (did you mean '{}'?)", where_, join_path(path_, key), join_path(path_, best));
+      fail("{}: unknown key '{}' (did you mean '{}'?)", where_, join_path(path_, key),
+           join_path(path_, best));
     fail("{}: unknown key '{}' (allowed here: {})", where_, join_path(path_, key), join(allowed_));
   }
 }
 
-std::string JsonObjectReader::path(std::string_view key) const { return join_path(path_, key); }
+std::string JsonObjectReader::path(std::string_view key) const {
+  return join_path(path_, key);
+}
 
 void JsonObjectReader::check_allowed(std::string_view key) const {
   // Asking for a key the constructor did not allow is a bug in the reader, not in the scene.
@@ -158,10 +162,11 @@ int64_t JsonObjectReader::integer(std::string_view key, std::optional<int64_t> f
   const json* v = get(key);
   if (!v && fallback) return *fallback;
   const json& value = v ? *v : required(key);
-  const bool in_range = value.is_number_integer() &&
-                        (value.is_number_unsigned() ? value.get<uint64_t>() <= uint64_t(hi) && hi >= 0 &&
-                                                          int64_t(value.get<uint64_t>()) >= lo
-                                                    : value.get<int64_t>() >= lo && value.get<int64_t>() <= hi);
+  const bool in_range =
+      value.is_number_integer() &&
+      (value.is_number_unsigned()
+           ? value.get<uint64_t>() <= uint64_t(hi) && hi >= 0 && int64_t(value.get<uint64_t>()) >= lo
+           : value.get<int64_t>() >= lo && value.get<int64_t>() <= hi);
   if (!in_range) fail_key(key, fmt::format("must be an integer in [{}, {}] (got {})", lo, hi, shown(value)));
   return value.is_number_unsigned() ? int64_t(value.get<uint64_t>()) : value.get<int64_t>();
 }
@@ -188,7 +193,8 @@ glm::vec2 JsonObjectReader::vec2(std::string_view key, std::optional<glm::vec2> 
   return glm::vec2(n[0], n[1]);
 }
 
-std::vector<float> JsonObjectReader::numbers(std::string_view key, std::optional<std::vector<float>> fallback) const {
+std::vector<float> JsonObjectReader::numbers(std::string_view key,
+                                             std::optional<std::vector<float>> fallback) const {
   const json* v = get(key);
   if (!v && fallback) return *fallback;
   const json& value = v ? *v : required(key);
@@ -282,8 +288,9 @@ MaterialKind parse_kind(const JsonObjectReader& in) {
 
 glm::vec3 unit_color(const JsonObjectReader& in, std::string_view key, std::optional<glm::vec3> fallback) {
   const glm::vec3 c = in.vec3(key, fallback);
-  in.require(glm::all(glm::greaterThanEqual(c, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(c, glm::vec3(1.0f))),
-             key, "must have every component in [0, 1]");
+  in.require(
+      glm::all(glm::greaterThanEqual(c, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(c, glm::vec3(1.0f))),
+      key, "must have every component in [0, 1]");
   return c;
 }
 
@@ -294,7 +301,8 @@ glm::vec3 non_negative(const JsonObjectReader& in, std::string_view key, std::op
 }
 
 Material parse_material(const json& value, const std::string& where, const std::string& path) {
-  const JsonObjectReader in(value, where, path, {"name", "kind", "color", "ior", "absorption", "transmittance"});
+  const JsonObjectReader in(value, where, path,
+                            {"name", "kind", "color", "ior", "absorption", "transmittance"});
   Material m;
   m.name = in.string("name");
   in.require(!m.name.empty(), "name", "must not be empty");
@@ -326,7 +334,8 @@ glm::mat4 parse_transform(const json& value, const std::string& where, const std
   if (const json* s = in.get("scale"); s && s->is_number()) {
     scale = glm::vec3(in.number("scale"));
   } else if (s) {
-    if (!s->is_array()) in.fail_key("scale", fmt::format("must be a number or an array of 3 numbers (got {})", shown(*s)));
+    if (!s->is_array())
+      in.fail_key("scale", fmt::format("must be a number or an array of 3 numbers (got {})", shown(*s)));
     scale = in.vec3("scale");
   }
   in.require(scale.x != 0.0f && scale.y != 0.0f && scale.z != 0.0f, "scale", "must not be 0 along any axis");
@@ -335,7 +344,8 @@ glm::mat4 parse_transform(const json& value, const std::string& where, const std
 
 uint32_t find_material(const JsonObjectReader& in, const std::vector<Material>& materials, const json& name,
                        const std::string& path) {
-  if (!name.is_string()) fail_json_value(in.where(), path, fmt::format("must be a material name (got {})", shown(name)));
+  if (!name.is_string())
+    fail_json_value(in.where(), path, fmt::format("must be a material name (got {})", shown(name)));
   const std::string s = name.get<std::string>();
   for (size_t i = 0; i < materials.size(); ++i)
     if (materials[i].name == s) return uint32_t(i);
@@ -346,7 +356,8 @@ uint32_t find_material(const JsonObjectReader& in, const std::vector<Material>& 
 
 MeshInstance parse_mesh(const json& value, const std::string& where, const std::string& path,
                         const std::vector<Material>& materials, const std::filesystem::path& base_dir) {
-  const JsonObjectReader in(value, where, path, {"file", "generator", "params", "material", "subdivide", "transform"});
+  const JsonObjectReader in(value, where, path,
+                            {"file", "generator", "params", "material", "subdivide", "transform"});
   MeshInstance mesh;
   if (in.has("file") == in.has("generator"))
     fail("{}: '{}' needs exactly one of 'file' and 'generator'", where, path);
@@ -386,7 +397,8 @@ MeshInstance parse_mesh(const json& value, const std::string& where, const std::
     // One scene material per material id the mesh carries.
     std::vector<uint32_t> map;
     for (size_t k = 0; k < material->size(); ++k)
-      map.push_back(find_material(in, materials, (*material)[k], fmt::format("{}[{}]", in.path("material"), k)));
+      map.push_back(
+          find_material(in, materials, (*material)[k], fmt::format("{}[{}]", in.path("material"), k)));
     uint32_t used = 0;
     for (const glm::uvec4& t : mesh.soup.triangles) used = std::max(used, t.w);
     in.require(used < map.size(), "material",
@@ -421,16 +433,17 @@ Light parse_light(const json& value, const std::string& where) {
 }
 
 Camera parse_camera(const json& value, const std::string& where) {
-  const JsonObjectReader in(value, where, "camera", {"position", "look_at", "up", "fov_deg", "width", "height"});
+  const JsonObjectReader in(value, where, "camera",
+                            {"position", "look_at", "up", "fov_deg", "width", "height"});
   Camera camera;
   camera.position = in.vec3("position");
   camera.look_at = in.vec3("look_at");
   in.require(camera.look_at != camera.position, "look_at", "must differ from 'position'");
   camera.up = in.vec3("up", camera.up);
   const glm::vec3 view = glm::normalize(camera.look_at - camera.position);
-  in.require(glm::length(camera.up) > 0.0f &&
-                 glm::length(glm::cross(view, glm::normalize(camera.up))) > 1e-4f,
-             "up", "must be non-zero and not parallel to the view direction");
+  in.require(
+      glm::length(camera.up) > 0.0f && glm::length(glm::cross(view, glm::normalize(camera.up))) > 1e-4f, "up",
+      "must be non-zero and not parallel to the view direction");
   camera.fov_deg = in.number("fov_deg", camera.fov_deg);
   in.require(camera.fov_deg > 0.0f && camera.fov_deg < 180.0f, "fov_deg", "must be in (0, 180)");
   camera.width = uint32_t(in.integer("width", camera.width, 1, kMaxImageSize));
@@ -461,11 +474,13 @@ GridRequest parse_grid(const json& value, const std::string& where) {
     Bounds bounds;
     bounds.lo = glm::vec3(b[0], b[1], b[2]);
     bounds.hi = glm::vec3(b[3], b[4], b[5]);
-    in.require(glm::all(glm::lessThan(bounds.lo, bounds.hi)), "bounds", "must have x0 < x1, y0 < y1 and z0 < z1");
+    in.require(glm::all(glm::lessThan(bounds.lo, bounds.hi)), "bounds",
+               "must have x0 < x1, y0 < y1 and z0 < z1");
     grid.bounds = bounds;
   }
   grid.margin_voxels = in.number("margin_voxels", grid.margin_voxels);
-  in.require(grid.margin_voxels >= 0.0f && grid.margin_voxels <= 1000.0f, "margin_voxels", "must be in [0, 1000]");
+  in.require(grid.margin_voxels >= 0.0f && grid.margin_voxels <= 1000.0f, "margin_voxels",
+             "must be in [0, 1000]");
   return grid;
 }
 
@@ -524,11 +539,13 @@ json parse_json(std::string_view text, const std::string& where) {
     return true;
   };
   try {
-    return json::parse(text.begin(), text.end(), callback, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+    return json::parse(text.begin(), text.end(), callback, /*allow_exceptions=*/true,
+                       /*ignore_comments=*/true);
   } catch (const json::parse_error& e) {
     // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error while ..."
     std::string reason = e.what();
-    if (const size_t bracket = reason.find("] "); reason.starts_with("[json.exception") && bracket != std::string::npos)
+    if (const size_t bracket = reason.find("] ");
+        reason.starts_with("[json.exception") && bracket != std::string::npos)
       reason = reason.substr(bracket + 2);
     fail("{}: JSON {}", where, reason);
   }
@@ -544,7 +561,8 @@ void apply_defaults(Scene& scene, bool has_light, bool has_camera, bool has_envi
 
 }  // namespace
 
-Scene parse_scene(std::string_view json_text, const std::string& label, const std::filesystem::path& base_dir) {
+Scene parse_scene(std::string_view json_text, const std::string& label,
+                  const std::filesystem::path& base_dir) {
   const json root_value = parse_json(json_text, label);
   const JsonObjectReader root(root_value, label, "",
                               {"materials", "meshes", "light", "camera", "environment", "grid"});
@@ -567,9 +585,11 @@ Scene parse_scene(std::string_view json_text, const std::string& label, const st
 
   const json* meshes = root.get("meshes");
   if (!meshes) fail("{}: missing required key 'meshes'", label);
-  if (!meshes->is_array() || meshes->empty()) root.require(false, "meshes", "must be a non-empty array of meshes");
+  if (!meshes->is_array() || meshes->empty())
+    root.require(false, "meshes", "must be a non-empty array of meshes");
   for (size_t i = 0; i < meshes->size(); ++i)
-    scene.meshes.push_back(parse_mesh((*meshes)[i], label, fmt::format("meshes[{}]", i), scene.materials, base_dir));
+    scene.meshes.push_back(
+        parse_mesh((*meshes)[i], label, fmt::format("meshes[{}]", i), scene.materials, base_dir));
 
   if (const json* light = root.get("light")) scene.light = parse_light(*light, label);
   if (const json* camera = root.get("camera")) scene.camera = parse_camera(*camera, label);

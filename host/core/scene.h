@@ -1,7 +1,8 @@
 // A scene: meshes with materials, one light, one camera, an environment colour and how to fit the grid.
 //
 // Scene file format (JSON; // and /* */ comments allowed). Every key is optional unless marked required;
-// an unknown key anywhere is an error naming its path (e.g. "scene.json: unknown key 'meshes[1].materail'").
+// an unknown or repeated key anywhere is an error naming its path (e.g. "scene.json: unknown key
+// 'meshes[1].materail' (did you mean 'meshes[1].material'?)"); so are wrong types and out-of-range values.
 //
 //   {
 //     "materials": [                                  default: one opaque material "default"
@@ -12,12 +13,12 @@
 //       {"name": "leaf", "kind": "sheet",
 //        "color": [0.3, 0.6, 0.2],                    sheet: color in [0,1] (0.8),
 //        "transmittance": [0.5, 0.8, 0.4]}            transmittance per crossing in [0,1] (1)
-//     ],
+//     ],                                              (a key of another kind is an error)
 //     "meshes": [                                     required, at least one
 //       {"file": "../meshes/bunny.obj",               a mesh file (.obj .off .ply .stl), see below, or
-//        "material": "glass",                         a material name, or a list of names, one per material id
-//                                                     the mesh carries (["bark", "leaf"] for a tree);
-//                                                     default: the first material
+//        "material": "glass",                         a material name, or a list of names, one per
+//                                                     material id the mesh carries (["bark", "leaf"] for
+//                                                     a tree); default: the first material
 //        "subdivide": 0,                              midpoint subdivision levels (0..8), before transforming
 //        "transform": {"scale": 1.0,                  a number or [x, y, z], no component 0
 //                      "rotate_deg": [0, 0, 0],       about X, then Y, then Z, in degrees
@@ -55,8 +56,8 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <optional>
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -68,10 +69,10 @@
 namespace voxr {
 
 struct Light {
-  std::string type = "point";  // "point" | "directional"
-  glm::vec3 position{0.0f};    // point
+  std::string type = "point";              // "point" | "directional"
+  glm::vec3 position{0.0f};                // point
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional: unit vector, the way the light travels
-  glm::vec3 intensity{1.0f};   // point: irradiance at distance d is intensity / d^2; directional: irradiance
+  glm::vec3 intensity{1.0f};  // point: irradiance at distance d is intensity / d^2; directional: irradiance
 };
 
 struct Camera {
@@ -114,7 +115,8 @@ Scene load_scene(const std::filesystem::path& json_file);
 
 // Parses scene JSON text. `label` names the source in errors and becomes Scene::source; relative mesh
 // paths resolve against `base_dir`.
-Scene parse_scene(std::string_view json_text, const std::string& label, const std::filesystem::path& base_dir);
+Scene parse_scene(std::string_view json_text, const std::string& label,
+                  const std::filesystem::path& base_dir);
 
 // `.json` -> load_scene. Any other extension: the mesh file as a scene with one opaque material
 // "default", identity transform and default light, camera and environment framing the mesh.
@@ -159,7 +161,8 @@ class JsonObjectReader {
   std::string string(std::string_view key, std::optional<std::string> fallback = std::nullopt) const;
   glm::vec3 vec3(std::string_view key, std::optional<glm::vec3> fallback = std::nullopt) const;
   glm::vec2 vec2(std::string_view key, std::optional<glm::vec2> fallback = std::nullopt) const;
-  std::vector<float> numbers(std::string_view key, std::optional<std::vector<float>> fallback = std::nullopt) const;
+  std::vector<float> numbers(std::string_view key,
+                             std::optional<std::vector<float>> fallback = std::nullopt) const;
 
   // Throws "<where>: '<path>.<key>' <what> (got <value>)" unless `ok`.
   void require(bool ok, std::string_view key, std::string_view what) const;

@@ -23,7 +23,8 @@ TriangleSoup subdivide_once(const TriangleSoup& in) {
     const uint64_t key = a < b ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a);
     const auto [it, inserted] = midpoints.try_emplace(key, uint32_t(out.positions.size()));
     if (inserted) {
-      out.positions.push_back(glm::vec4(0.5f * (glm::vec3(in.positions[a]) + glm::vec3(in.positions[b])), 1.0f));
+      out.positions.push_back(
+          glm::vec4(0.5f * (glm::vec3(in.positions[a]) + glm::vec3(in.positions[b])), 1.0f));
     }
     return it->second;
   };
@@ -47,8 +48,8 @@ TriangleSoup subdivide_midpoint(const TriangleSoup& soup, int levels) {
     vertices += 3 * triangles;  // bound: every edge distinct
     triangles *= 4;
     if (triangles > kMaxElements || vertices > kMaxElements)
-      fail("subdividing {} triangles {} times gives more than 2^31 triangles or vertices", soup.triangles.size(),
-           levels);
+      fail("subdividing {} triangles {} times gives more than 2^31 triangles or vertices",
+           soup.triangles.size(), levels);
   }
   TriangleSoup out = subdivide_once(soup);
   for (int l = 1; l < levels; ++l) out = subdivide_once(out);

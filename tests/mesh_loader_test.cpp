@@ -1,0 +1,335 @@
+// Mesh files through OpenMesh: a cube in every format, and every way a file can be wrong.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <string>
+
+#include "core/error.h"
+#include "core/mesh_loader.h"
+
+namespace voxr {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh folder per test, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    static std::atomic<int> counter{0};
+    path_ = fs::temp_directory_path() /
+            ("voxr-mesh-test-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  fs::path write(const std::string& name, const std::string& content) const {
+    const fs::path p = path_ / name;
+    std::ofstream(p, std::ios::binary) << content;
+    return p;
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+// Unit cube [0,1]^3: 8 corners (x from bit 0, y bit 1, z bit 2), 6 outward quads.
+const int kCubeQuads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                              {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+glm::vec3 corner(int i) {
+  return glm::vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+}
+
+std::string cube_obj() {
+  std::string s = "# unit cube\n";
+  for (int i = 0; i < 8; ++i) s += fmt::format("v {} {} {}\n", corner(i).x, corner(i).y, corner(i).z);
+  for (const auto& q : kCubeQuads)
+    s += fmt::format("f {} {} {} {}\n", q[0] + 1, q[1] + 1, q[2] + 1, q[3] + 1);
+  return s;
+}
+
+std::string cube_off() {
+  std::string s = "OFF\n# unit cube\n8 6 12\n";
+  for (int i = 0; i < 8; ++i) s += fmt::format("{} {} {}\n", corner(i).x, corner(i).y, corner(i).z);
+  for (const auto& q : kCubeQuads) s += fmt::format("4 {} {} {} {}\n", q[0], q[1], q[2], q[3]);
+  return s;
+}
+
+std::string cube_ply() {
+  std::string s =
+      "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 12\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int i = 0; i < 8; ++i) s += fmt::format("{} {} {}\n", corner(i).x, corner(i).y, corner(i).z);
+  for (const auto& q : kCubeQuads)
+    s += fmt::format("3 {} {} {}\n3 {} {} {}\n", q[0], q[1], q[2], q[0], q[2], q[3]);
+  return s;
+}
+
+// Binary little-endian PLY with double coordinates and quads.
+std::string cube_ply_binary() {
+  std::string s =
+      "ply\nformat binary_little_endian 1.0\ncomment unit cube\nelement vertex 8\nproperty double x\n"
+      "property double y\nproperty double z\nelement face 6\nproperty list uchar int vertex_indices\n"
+      "end_header\n";
+  for (int i = 0; i < 8; ++i) {
+    const double p[3] = {corner(i).x, corner(i).y, corner(i).z};
+    s.append(reinterpret_cast<const char*>(p), sizeof p);
+  }
+  for (const auto& q : kCubeQuads) {
+    s.push_back(4);
+    s.append(reinterpret_cast<const char*>(q), 4 * sizeof(int));
+  }
+  return s;
+}
+
+std::string cube_stl_ascii() {
+  std::string s = "solid cube\n";
+  for (const auto& q : kCubeQuads)
+    for (const auto& tri : {glm::ivec3(q[0], q[1], q[2]), glm::ivec3(q[0], q[2], q[3])}) {
+      s += "facet normal 0 0 0\nouter loop\n";
+      for (int c = 0; c < 3; ++c)
+        s += fmt::format("vertex {} {} {}\n", corner(tri[c]).x, corner(tri[c]).y, corner(tri[c]).z);
+      s += "endloop\nendfacet\n";
+    }
+  return s + "endsolid cube\n";
+}
+
+std::string cube_stl_binary() {
+  std::string s(80, ' ');
+  const uint32_t n = 12;
+  s.append(reinterpret_cast<const char*>(&n), 4);
+  for (const auto& q : kCubeQuads)
+    for (const auto& tri : {glm::ivec3(q[0], q[1], q[2]), glm::ivec3(q[0], q[2], q[3])}) {
+      float f[12] = {0, 0, 0};
+      for (int c = 0; c < 3; ++c)
+        for (int a = 0; a < 3; ++a) f[3 + 3 * c + a] = corner(tri[c])[a];
+      s.append(reinterpret_cast<const char*>(f), sizeof f);
+      s.append(2, '\0');
+    }
+  return s;
+}
+
+double signed_volume(const TriangleSoup& soup) {
+  double v = 0.0;
+  for (const glm::uvec4& t : soup.triangles) {
+    const glm::dvec3 a(soup.positions[t.x]), b(soup.positions[t.y]), c(soup.positions[t.z]);
+    v += glm::dot(a, glm::cross(b, c)) / 6.0;
+  }
+  return v;
+}
+
+// Closed and consistently oriented: every directed edge once, its reverse once.
+bool closed_and_oriented(const TriangleSoup& soup) {
+  std::map<std::pair<uint32_t, uint32_t>, int> directed;
+  for (const glm::uvec4& t : soup.triangles)
+    for (int c = 0; c < 3; ++c) ++directed[{t[c], t[(c + 1) % 3]}];
+  for (const auto& [edge, n] : directed)
+    if (n != 1 || !directed.count({edge.second, edge.first})) return false;
+  return true;
+}
+
+std::string load_error(const fs::path& file) {
+  try {
+    load_mesh(file);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+// The message starts with the file path, then `reason`.
+void expect_error(const fs::path& file, const std::string& reason) {
+  const std::string message = load_error(file);
+  EXPECT_EQ(message.rfind(file.string() + ": ", 0), 0u) << message;
+  EXPECT_NE(message.find(reason), std::string::npos) << "message: " << message << "\nexpected: " << reason;
+}
+
+TEST(MeshLoader, LoadsCubeInEveryFormat) {
+  TempDir dir;
+  const std::map<std::string, std::string> files = {
+      {"cube.obj", cube_obj()},          {"cube.off", cube_off()},       {"cube.ply", cube_ply()},
+      {"binary.ply", cube_ply_binary()}, {"cube.stl", cube_stl_ascii()}, {"binary.stl", cube_stl_binary()},
+      {"UPPER.OBJ", cube_obj()}};
+  for (const auto& [name, content] : files) {
+    SCOPED_TRACE(name);
+    const TriangleSoup soup = load_mesh(dir.write(name, content));
+    EXPECT_EQ(soup.triangle_count(), 12u);
+    EXPECT_EQ(soup.vertex_count(), 8u);  // STL corners are merged
+    EXPECT_TRUE(closed_and_oriented(soup));
+    EXPECT_NEAR(signed_volume(soup), 1.0, 1e-6);
+    EXPECT_EQ(soup.bounds().lo, glm::vec3(0.0f));
+    EXPECT_EQ(soup.bounds().hi, glm::vec3(1.0f));
+    for (const glm::uvec4& t : soup.triangles) EXPECT_EQ(t.w, 0u);
+  }
+}
+
+TEST(MeshLoader, FanTriangulatesPolygons) {
+  TempDir dir;
+  const TriangleSoup soup = load_mesh(
+      dir.write("hex.obj", "v 0 0 0\nv 1 0 0\nv 2 1 0\nv 1 2 0\nv 0 2 0\nv -1 1 0\nf 1 2 3 4 5 6\n"));
+  ASSERT_EQ(soup.triangle_count(), 4u);
+  for (uint32_t k = 0; k < 4; ++k) EXPECT_EQ(soup.triangles[k], glm::uvec4(0, k + 1, k + 2, 0));
+}
+
+TEST(MeshLoader, ReadsOffVariants) {
+  TempDir dir;
+  // Counts on the keyword line, comments, a signed number, per-vertex and per-face colours (COFF).
+  const TriangleSoup soup = load_mesh(
+      dir.write("variant.off",
+                "COFF 4 2 0 # counts here\n# comment\n0 0 0 1 0 0 1\n+1 0 0 1 0 0 1\n\n0 1 0 1 0 0 1\n"
+                "1e0 1 0 1 0 0 1\n3 0 1 2 0.5 0.5 0.5\n3 1 3 2\n"));
+  ASSERT_EQ(soup.triangle_count(), 2u);
+  EXPECT_EQ(soup.positions[1], glm::vec4(1, 0, 0, 1));
+  EXPECT_EQ(soup.triangles[1], glm::uvec4(1, 3, 2, 0));
+}
+
+TEST(MeshLoader, ReportsMissingUnreadableAndUnsupportedFiles) {
+  TempDir dir;
+  expect_error(dir.path() / "missing.obj", "no such file");
+  fs::create_directory(dir.path() / "folder.obj");
+  expect_error(dir.path() / "folder.obj", "is a directory");
+  expect_error(dir.write("mesh.3ds", "x"),
+               "unsupported mesh format '.3ds' (supported: .obj, .off, .ply, .stl)");
+  expect_error(dir.write("noext", "x"), "unsupported mesh format ''");
+  expect_error(dir.write("empty.obj", ""), "the file is empty");
+  if (getuid() != 0) {  // root reads anything
+    const fs::path locked = dir.write("locked.obj", cube_obj());
+    fs::permissions(locked, fs::perms::none);
+    expect_error(locked, "cannot open the file for reading");
+  }
+}
+
+TEST(MeshLoader, RejectsGarbageInEveryFormat) {
+  TempDir dir;
+  std::string garbage;
+  uint32_t x = 12345;
+  for (int i = 0; i < 4000; ++i) {
+    x = x * 1664525u + 1013904223u;
+    garbage.push_back(char(x >> 24));
+  }
+  expect_error(dir.write("garbage.obj", garbage), "no triangles found; is it a valid OBJ file?");
+  expect_error(dir.write("garbage.off", garbage), "an OFF file starts with the keyword OFF");
+  expect_error(dir.write("garbage.ply", garbage), "a PLY file starts with the line 'ply'");
+  expect_error(dir.write("garbage.stl", garbage), "no triangles found; is it a valid STL file?");
+  expect_error(dir.write("prose.obj", "This is not a mesh.\nJust words.\n"), "no triangles found");
+  expect_error(dir.write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"), "no triangles found");
+  expect_error(dir.write("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 zero\n0 1 0\n3 0 1 2\n"),
+               "line 4: 'zero' is not a finite number");
+}
+
+TEST(MeshLoader, RejectsNonFiniteVertices) {
+  TempDir dir;
+  expect_error(dir.write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
+               "line 2: vertex coordinate 'nan' is not a finite number");
+  expect_error(dir.write("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 -inf\nf 1 2 3\n"),
+               "line 3: vertex coordinate '-inf' is not a finite number");
+  expect_error(dir.write("nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"),
+               "line 4: 'nan' is not a finite number");
+  expect_error(dir.write("huge.off", "OFF\n3 1 0\n0 0 0\n1e39 0 0\n0 1 0\n3 0 1 2\n"),
+               "line 4: '1e39' is not a finite number");  // beyond float
+  expect_error(
+      dir.write("nan.ply",
+                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                "0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n"),
+      "line 11: 'nan' is not a finite number");
+  expect_error(dir.write("nan.stl",
+                         "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                         "vertex 0 NaN 0\nendloop\nendfacet\nendsolid s\n"),
+               "line 6: vertex coordinate 'NaN' is not a finite number");
+  // Binary files: NaN bit patterns.
+  std::string stl = cube_stl_binary();
+  const float nan = std::nanf("");
+  std::memcpy(&stl[84 + 50 + 12 + 4], &nan, 4);
+  expect_error(dir.write("nan.stl", stl), "triangle 1 has a vertex coordinate that is not finite (nan)");
+  std::string ply = cube_ply_binary();
+  const double inf = std::numeric_limits<double>::infinity();
+  std::memcpy(&ply[ply.find("end_header\n") + 11 + 24 * 3 + 16], &inf, 8);
+  expect_error(dir.write("inf.ply", ply), "vertex 3 has coordinate z = inf, which is not a finite float");
+}
+
+TEST(MeshLoader, RejectsBadIndicesAndTruncatedFiles) {
+  TempDir dir;
+  expect_error(dir.write("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"),
+               "face 0 uses vertex 8 but the file has 3 vertices");
+  expect_error(dir.write("index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"),
+               "line 6: face 0 uses vertex '3' but the file has 3 vertices");
+  expect_error(dir.write("short.off", "OFF\n8 6 0\n0 0 0\n1 0 0\n"), "declares 8 vertices but ends after 2");
+  expect_error(dir.write("counts.off", "OFF\n3 1\n"),
+               "the OFF header ends before the vertex, face and edge counts");
+  const std::string ply = cube_ply();
+  expect_error(dir.write("short.ply", ply.substr(0, ply.size() - 30)), "but the file ends after");
+  expect_error(dir.write("header.ply", "ply\nformat ascii 1.0\nelement vertex 3\n"), "no end_header line");
+  const std::string binary = cube_ply_binary();
+  expect_error(dir.write("short_binary.ply", binary.substr(0, binary.size() - 3)),
+               "the file ends inside face 5 of 6");
+  expect_error(dir.write("shorter_binary.ply", binary.substr(0, binary.size() - 100)),
+               "the header declares 6 face elements but the file is too short for them");
+  expect_error(
+      dir.write("type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n1\n"),
+      "line 4: unknown PLY type 'float128'");
+  expect_error(dir.write("binary.off", "OFF BINARY\n"), "line 1: binary OFF is not supported");
+  expect_error(dir.write("4d.off", "4OFF\n1 0 0\n0 0 0 0\n"), "line 1: '4OFF' files are not supported");
+}
+
+TEST(MeshLoader, PrintsNothing) {
+  TempDir dir;
+  ::testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStdout();
+  load_error(dir.write("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"));
+  load_error(dir.write("bad.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\nend_header\nxx"));
+  load_error(dir.write("bin.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0.5 0.5\n"));
+  load_error(dir.write("mtl.obj", "mtllib missing.mtl\nusemtl x\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  EXPECT_EQ(err, "");
+  EXPECT_EQ(out, "");
+}
+
+// Meshes fetched by scripts/fetch-meshes.sh into $VOXR_MESH_DIR (default: data/meshes in the source tree).
+fs::path mesh_dir() {
+  const char* env = std::getenv("VOXR_MESH_DIR");
+  return env && *env ? fs::path(env) : fs::path(VOXR_SOURCE_DIR) / "data" / "meshes";
+}
+
+void expect_packaged_mesh(const std::string& name, size_t triangles) {
+  const fs::path file = mesh_dir() / name;
+  if (!fs::exists(file)) GTEST_SKIP() << file << " is absent; run scripts/fetch-meshes.sh to fetch it";
+  const TriangleSoup soup = load_mesh(file);
+  EXPECT_EQ(soup.triangle_count(), triangles) << name;
+  EXPECT_EQ(validate_soup(soup, name), 0u) << name << ": degenerate triangles";
+  EXPECT_FALSE(soup.bounds().empty());
+}
+
+TEST(MeshLoader, PackagedBunny) {
+  expect_packaged_mesh("bunny.obj", 69666);
+}
+TEST(MeshLoader, PackagedArmadillo) {
+  expect_packaged_mesh("armadillo.off", 52000);
+}
+TEST(MeshLoader, PackagedBunny00) {
+  expect_packaged_mesh("bunny00.off", 75408);
+}
+TEST(MeshLoader, PackagedChineseDragon) {
+  expect_packaged_mesh("ChineseDragon-10kv.off", 19994);
+}
+TEST(MeshLoader, PackagedElephant) {
+  expect_packaged_mesh("refined_elephant.off", 88928);
+}
+TEST(MeshLoader, PackagedShark) {
+  expect_packaged_mesh("mech-holes-shark.off", 10192);
+}
+
+}  // namespace
+}  // namespace voxr
