@@ -2,7 +2,8 @@
  * scan_tiles scans tiles of WG_SIZE*SCAN_ITEMS elements and writes each tile's total; the host scans the
  * totals recursively; scan_add adds each tile's offset.
  * Types: SCAN_IN (uint or ulong) is read, SCAN_OUT is written, tile totals are ulong so a grand total
- * beyond 32 bits is still exact. SCAN_POPCOUNT scans the set-bit counts of the input words (voxel ranks).
+ * beyond 32 bits is still exact. SCAN_RANKED_WORDS scans the set-bit counts of 32-bit occupancy words and
+ * writes each word beside its rank, (rank << 32) | word, so a voxel's rank costs one load (vox_raster.cl).
  * shape: scan_tiles one work group per tile; scan_add one work item per SCAN_ITEMS elements. */
 #ifndef WG_SIZE
 #define WG_SIZE 256
@@ -16,10 +17,14 @@
 #ifndef SCAN_OUT
 #define SCAN_OUT ulong
 #endif
-#ifdef SCAN_POPCOUNT
+#ifdef SCAN_RANKED_WORDS
 #define SCAN_LOAD(x) ((ulong)popcount(x))
+#define SCAN_STORE(i, rank) (out[i] = ((ulong)(rank) << 32) | in[i])
+#define SCAN_SHIFT 32
 #else
 #define SCAN_LOAD(x) ((ulong)(x))
+#define SCAN_STORE(i, sum) (out[i] = (SCAN_OUT)(sum))
+#define SCAN_SHIFT 0
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void scan_tiles(
@@ -43,14 +48,14 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void scan_tiles(
   }
   const ulong before = lid > 0 ? partial[lid - 1] : 0;
   for (int q = 0; q < SCAN_ITEMS; ++q)
-    if (base + q < n) out[base + q] = (SCAN_OUT)(before + prefix[q]);
+    if (base + q < n) SCAN_STORE(base + q, before + prefix[q]);
   if (lid == WG_SIZE - 1) tile_sums[get_group_id(0)] = partial[lid];
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void scan_add(
     __global SCAN_OUT* out, __global const ulong* tile_offsets, ulong n) {
   const ulong base = (ulong)get_global_id(0) * SCAN_ITEMS;
-  const SCAN_OUT offset = (SCAN_OUT)tile_offsets[get_group_id(0)];
+  const SCAN_OUT offset = (SCAN_OUT)(tile_offsets[get_group_id(0)] << SCAN_SHIFT);
   for (int q = 0; q < SCAN_ITEMS; ++q)
     if (base + q < n) out[base + q] += offset;
 }

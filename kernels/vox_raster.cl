@@ -94,7 +94,7 @@ inline void vox_cells(float lo, float hi, int* first, int* last) {
 
 typedef struct VoxWriter {
   __global uint* occ;
-  __global const uint* rank_base;
+  __global const ulong* ranked; /* pass 1: (rank of the word's first set voxel << 32) | occupancy word */
   __global long* acc;
   __global uint* material;
   ulong word;
@@ -122,7 +122,8 @@ inline void vox_emit(VoxWriter* w, ulong linear) {
   }
   w->mask |= bit;
 #else
-  const ulong rank = w->rank_base[word] + popcount(w->occ[word] & (bit - 1u));
+  const ulong ranked = w->ranked[word];
+  const ulong rank = (ranked >> 32) + popcount((uint)ranked & (bit - 1u));
 #if VOX_CHANNELS & (VOX_CH_COUNT | VOX_CH_NORMAL)
   atom_add(w->acc + 2 * rank, (long)w->normal[0] + (1L << 32));
 #endif
@@ -146,30 +147,17 @@ inline void vox_fixed_normal(const VoxTri* t, int* out) {
 /* ---- exact rules --------------------------------------------------------------------------------- */
 
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
-/* A separating-axis candidate a: the box at relative corner b overlaps along a iff lo <= a.b <= hi. */
-typedef struct VoxAxis {
-  long a[3];
-  long lo, hi;
-} VoxAxis;
-
-inline VoxAxis vox_axis(const VoxTri* t, long ax, long ay, long az) {
-  VoxAxis r;
-  r.a[0] = ax;
-  r.a[1] = ay;
-  r.a[2] = az;
-  long p[2];
-  for (int c = 1; c < 3; ++c)
-    p[c - 1] = ax * (t->v[c][0] - t->v[0][0]) + ay * (t->v[c][1] - t->v[0][1]) + az * (t->v[c][2] - t->v[0][2]);
-  const long tmin = min(0L, min(p[0], p[1]));
-  const long tmax = max(0L, max(p[0], p[1]));
-  r.lo = tmin - VOX_S * (max(ax, 0L) + max(ay, 0L) + max(az, 0L));
-  r.hi = tmax - VOX_S * (min(ax, 0L) + min(ay, 0L) + min(az, 0L));
-  return r;
+/* A separating-axis candidate a: the box whose corner is b (relative to v0) overlaps the triangle along a
+ * iff lo <= a.b <= hi, where the triangle projects to [min(0,t), max(0,t)] and the box to a.b plus
+ * S * [sum of negative a, sum of positive a]. */
+inline void vox_axis_bounds(long t, long ax, long ay, long az, long* lo, long* hi) {
+  *lo = min(0L, t) - VOX_S * (max(ax, 0L) + max(ay, 0L) + max(az, 0L));
+  *hi = max(0L, t) - VOX_S * (min(ax, 0L) + min(ay, 0L) + min(az, 0L));
 }
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
-    VoxGridParams grid, __global const int4* snapped, __global const VoxCopy* copies, uint copy_count, __global uint* occ, __global const uint* rank_base,
+    VoxGridParams grid, __global const int4* snapped, __global const VoxCopy* copies, uint copy_count, __global uint* occ, __global const ulong* ranked,
     __global long* acc, __global uint* material) {
   const uint gid = get_global_id(0);
   if (gid >= copy_count) return;
@@ -202,7 +190,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
 
   VoxWriter w;
   w.occ = occ;
-  w.rank_base = rank_base;
+  w.ranked = ranked;
   w.acc = acc;
   w.normal[0] = w.normal[1] = w.normal[2] = 0;
   w.material = material;
@@ -216,17 +204,44 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
   const long rel_z = (long)k * VOX_S - t.v[0][2];
 
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
-  /* Edge x box-axis candidates. Those with the x axis are constant along a row; the others, with the
-   * triangle normal, vary linearly with the column. The box axes are the loop ranges. */
-  VoxAxis row_axes[3], col_axes[7];
+  /* The 13 separating axes: the box axes are the loop ranges; edge x X is constant along a row (row_*);
+   * edge x Y, edge x Z and the normal vary linearly with the column (col_*, 7 of them). An edge's own
+   * vertices project to the same value, so the triangle's projection is [min(0,t), max(0,t)] with t the
+   * projection of one vertex relative to v0 (v2 for edge 0, v1 for edges 1 and 2). */
+  long row_ay[3], row_az[3], row_lo[3], row_hi[3];
+  long col_ax[7], col_ay[7], col_az[7], col_lo[7], col_hi[7];
+  const long r1[3] = {t.v[1][0] - t.v[0][0], t.v[1][1] - t.v[0][1], t.v[1][2] - t.v[0][2]};
+  const long r2[3] = {t.v[2][0] - t.v[0][0], t.v[2][1] - t.v[0][1], t.v[2][2] - t.v[0][2]};
   for (int e = 0; e < 3; ++e) {
     const int f = e == 2 ? 0 : e + 1;
-    const long d[3] = {t.v[f][0] - t.v[e][0], t.v[f][1] - t.v[e][1], t.v[f][2] - t.v[e][2]};
-    row_axes[e] = vox_axis(&t, 0, d[2], -d[1]);
-    col_axes[2 * e] = vox_axis(&t, -d[2], 0, d[0]);
-    col_axes[2 * e + 1] = vox_axis(&t, d[1], -d[0], 0);
+    const long dx = t.v[f][0] - t.v[e][0], dy = t.v[f][1] - t.v[e][1], dz = t.v[f][2] - t.v[e][2];
+    const long* r = e == 0 ? r2 : r1;
+    /* edge x X = (0, dz, -dy) */
+    row_ay[e] = dz;
+    row_az[e] = -dy;
+    vox_axis_bounds(dz * r[1] - dy * r[2], 0, dz, -dy, &row_lo[e], &row_hi[e]);
+    /* edge x Y = (-dz, 0, dx) */
+    col_ax[2 * e] = -dz;
+    col_ay[2 * e] = 0;
+    col_az[2 * e] = dx;
+    vox_axis_bounds(dx * r[2] - dz * r[0], -dz, 0, dx, &col_lo[2 * e], &col_hi[2 * e]);
+    /* edge x Z = (dy, -dx, 0) */
+    col_ax[2 * e + 1] = dy;
+    col_ay[2 * e + 1] = -dx;
+    col_az[2 * e + 1] = 0;
+    vox_axis_bounds(dy * r[0] - dx * r[1], dy, -dx, 0, &col_lo[2 * e + 1], &col_hi[2 * e + 1]);
   }
-  col_axes[6] = vox_axis(&t, t.n[0], t.n[1], t.n[2]);
+  col_ax[6] = t.n[0];
+  col_ay[6] = t.n[1];
+  col_az[6] = t.n[2];
+  vox_axis_bounds(0, t.n[0], t.n[1], t.n[2], &col_lo[6], &col_hi[6]);
+  /* The slab is fixed for the whole record: fold its part of every projection in once. */
+  long row_z[3], col_z[7], col_step[7];
+  for (int e = 0; e < 3; ++e) row_z[e] = row_az[e] * rel_z;
+  for (int q = 0; q < 7; ++q) {
+    col_z[q] = col_az[q] * rel_z;
+    col_step[q] = col_ax[q] * VOX_S;
+  }
 #else
   /* Projected edges of the triangle, ordered counter-clockwise. */
   const int o1 = t.n[2] > 0 ? 1 : 2, o2 = t.n[2] > 0 ? 2 : 1;
@@ -269,21 +284,18 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
     const long rel_y = (long)j * VOX_S - t.v[0][1];
     int row_ok = 1;
     for (int e = 0; e < 3; ++e) {
-      const long v = row_axes[e].a[1] * rel_y + row_axes[e].a[2] * rel_z;
-      row_ok &= row_axes[e].lo <= v && v <= row_axes[e].hi;
+      const long v = row_ay[e] * rel_y + row_z[e];
+      row_ok &= row_lo[e] <= v && v <= row_hi[e];
     }
     if (!row_ok) continue;
     const long rel_x = (long)col_first * VOX_S - t.v[0][0];
     long value[7];
-    for (int q = 0; q < 7; ++q)
-      value[q] = col_axes[q].a[0] * rel_x + col_axes[q].a[1] * rel_y + col_axes[q].a[2] * rel_z;
-    long step[7];
-    for (int q = 0; q < 7; ++q) step[q] = col_axes[q].a[0] * VOX_S;
+    for (int q = 0; q < 7; ++q) value[q] = col_ax[q] * rel_x + col_ay[q] * rel_y + col_z[q];
     for (int i = col_first; i <= col_last; ++i) {
       int inside = 1;
-      for (int q = 0; q < 7; ++q) inside &= col_axes[q].lo <= value[q] && value[q] <= col_axes[q].hi;
+      for (int q = 0; q < 7; ++q) inside &= col_lo[q] <= value[q] && value[q] <= col_hi[q];
       if (inside) vox_emit(&w, row_base + (ulong)i);
-      for (int q = 0; q < 7; ++q) value[q] += step[q];
+      for (int q = 0; q < 7; ++q) value[q] += col_step[q];
     }
 #else
     const long cy = (long)j * VOX_S + VOX_S / 2;

@@ -15,10 +15,10 @@ Defines scan_defines(ScanKind kind) {
       d.push_back({"SCAN_IN", "uint"});
       d.push_back({"SCAN_OUT", "ulong"});
       break;
-    case ScanKind::kPopcountToUint:
+    case ScanKind::kRankedWords:
       d.push_back({"SCAN_IN", "uint"});
-      d.push_back({"SCAN_OUT", "uint"});
-      d.push_back({"SCAN_POPCOUNT", "1"});
+      d.push_back({"SCAN_OUT", "ulong"});
+      d.push_back({"SCAN_RANKED_WORDS", "1"});
       break;
     case ScanKind::kUlongToUlong:
       d.push_back({"SCAN_IN", "ulong"});

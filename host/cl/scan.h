@@ -10,7 +10,7 @@ namespace voxr {
 
 enum class ScanKind {
   kUintToUlong,     // uint counts -> ulong offsets (copy offsets)
-  kPopcountToUint,  // uint words -> uint rank of each word's first set bit (voxel ranks)
+  kRankedWords,     // uint occupancy words -> ulong (rank of the word's first set bit << 32) | word
   kUlongToUlong,    // ulong -> ulong (the recursion over tile totals)
 };
 

@@ -15,7 +15,7 @@ static_assert(sizeof(glm::vec4) == sizeof(cl_float4) && sizeof(glm::uvec4) == si
 
 namespace {
 
-constexpr size_t kGroup = 64;
+constexpr size_t kGroup = 256;
 
 // Profiled milliseconds per name accumulated since `before`.
 std::map<std::string, double> profile_since(const Profiler& profiler,
@@ -144,8 +144,8 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
   out.occ.resize(words);
   if (options.channels.attributes()) {
     progress("attributes");
-    cl::Buffer ranks = alloc(words * 4, "voxel ranks");
-    const uint64_t set = exclusive_scan(cl_, ScanKind::kPopcountToUint, occ, ranks, words, "rank");
+    cl::Buffer ranks = alloc(words * 8, "ranked occupancy words");
+    const uint64_t set = exclusive_scan(cl_, ScanKind::kRankedWords, occ, ranks, words, "rank");
     if (set > 0xffffffffull) fail("{} set voxels exceed the 2^32 limit of the attribute channels", set);
     out.voxels_set = set;
     // Count and normal sums accumulate packed in two 64-bit words per voxel (see vox_raster.cl).
