@@ -141,7 +141,7 @@ inline void vox_fixed_normal(const VoxTri* t, int* out) {
   const float f[3] = {convert_float(t->n[0]), convert_float(t->n[1]), convert_float(t->n[2])};
   const float len2 = (f[0] * f[0] + f[1] * f[1]) + f[2] * f[2];
   const float scale = len2 > 0.0f ? (float)VOXR_NORMAL_ONE / sqrt(len2) : 0.0f;
-  for (int q = 0; q < 3; ++q) out[q] = convert_int_rte(f[q] * scale);
+  for (int q = 0; q < 3; ++q) out[q] = (int)rint(f[q] * scale);
 }
 
 /* ---- exact rules --------------------------------------------------------------------------------- */

@@ -30,7 +30,7 @@ inline long vox_snap(float g) {
   /* Clamp far-away coordinates so the conversion is defined; such triangles never reach the grid. */
   const float limit = 1.0e9f;
   g = clamp(g * (float)VOXR_SUBVOXEL, -limit, limit);
-  return (long)convert_int_rte(g);
+  return (long)rint(g); /* round half to even; the value is integral, so the conversion is exact */
 }
 
 /* Transforms and snaps the triangle's vertices (vox_setup.cl stores them for the later stages). */
