@@ -112,6 +112,7 @@ cl::Buffer ClRuntime::buffer(uint64_t bytes, const std::string& what, cl_mem_fla
 }
 
 void ClRuntime::fill_zero(cl::Buffer& buffer, uint64_t bytes, const std::string& name) {
+  if (bytes == 0) return;
   try {
     cl::Event event;
     queue_.enqueueFillBuffer(buffer, cl_uint(0), 0, (bytes + 3) / 4 * 4, nullptr, &event);

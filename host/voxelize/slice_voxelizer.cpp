@@ -44,6 +44,17 @@ DeviceMesh::DeviceMesh(ClRuntime& cl, const TriangleSoup& soup) {
   cl.upload(triangles_, soup.triangles.data(), tri_bytes, "upload triangles");
 }
 
+cl::Buffer SliceVoxelizer::scratch(const std::string& what, uint64_t bytes) {
+  bytes = std::max<uint64_t>(bytes, 4);  // OpenCL has no empty buffers
+  Scratch& slot = scratch_[what];
+  if (slot.bytes < bytes) {
+    slot.buffer = cl::Buffer();  // release the old one first
+    slot.buffer = cl_.buffer(bytes, what);
+    slot.bytes = bytes;
+  }
+  return slot.buffer;
+}
+
 VoxelGrid SliceVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, const VoxelizeOptions& options,
                               VoxelizeStats* stats) {
   const auto start = std::chrono::steady_clock::now();
@@ -88,12 +99,11 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
   uint64_t device_bytes = 0;
   auto alloc = [&](uint64_t bytes, const std::string& what) {
     device_bytes += bytes;
-    return cl_.buffer(bytes, what);
+    return scratch(what, bytes);
   };
 
   progress("setup");
-  cl::Buffer occ = alloc(words * 4, fmt::format("the occupancy bits of a {}x{}x{} grid", grid.dims.x,
-                                                grid.dims.y, grid.dims.z));
+  cl::Buffer occ = alloc(words * 4, "the occupancy bits");
   cl_.fill_zero(occ, words * 4, "clear");
   cl::Buffer snapped = alloc(tris * 48, "snapped triangles");
   cl::Buffer counts = alloc(tris * 4, "copy counts");

@@ -33,7 +33,7 @@ struct VoxelizeStats {
   uint64_t copies = 0;           // (triangle, slab, row block) records
   uint64_t batches = 0;
   uint64_t voxels_set = 0;
-  uint64_t device_bytes = 0;     // peak of the buffers this run allocated
+  uint64_t device_bytes = 0;     // device memory the run's buffers need
   double upload_ms = 0.0;        // from profiling events
   double kernels_ms = 0.0;
   double readback_ms = 0.0;
@@ -69,7 +69,16 @@ class SliceVoxelizer {
                 VoxelizeStats* stats = nullptr);
 
  private:
+  // Device scratch buffers kept between runs (grown when too small), so repeated voxelizations — frames,
+  // benchmark repeats — do not pay for allocation and first-touch page faults every time.
+  cl::Buffer scratch(const std::string& what, uint64_t bytes);
+
+  struct Scratch {
+    cl::Buffer buffer;
+    uint64_t bytes = 0;
+  };
   ClRuntime& cl_;
+  std::map<std::string, Scratch> scratch_;
 };
 
 }  // namespace voxr
