@@ -7,6 +7,7 @@
 #include <numbers>
 #include <utility>
 
+#include "core/mesh_topology.h"
 #include "core/error.h"
 #include "core/generators.h"
 #include "core/subdivide.h"
@@ -16,44 +17,8 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-struct EdgeCounts {
-  size_t boundary = 0;     // undirected edges used once
-  size_t nonmanifold = 0;  // undirected edges used more than twice
-  size_t misoriented = 0;  // directed edges used more than once (neighbours disagree on winding)
-  bool closed() const { return boundary == 0 && nonmanifold == 0; }
-};
-
-EdgeCounts count_edges(const TriangleSoup& soup, uint32_t material = TriangleSoup::kKeepMaterial) {
-  std::map<std::pair<uint32_t, uint32_t>, int> undirected, directed;
-  for (const glm::uvec4& t : soup.triangles) {
-    if (material != TriangleSoup::kKeepMaterial && t.w != material) continue;
-    for (int c = 0; c < 3; ++c) {
-      const uint32_t a = t[c], b = t[(c + 1) % 3];
-      ++undirected[{std::min(a, b), std::max(a, b)}];
-      ++directed[{a, b}];
-    }
-  }
-  EdgeCounts counts;
-  for (const auto& [edge, n] : undirected) {
-    counts.boundary += n == 1;
-    counts.nonmanifold += n > 2;
-  }
-  for (const auto& [edge, n] : directed) counts.misoriented += n > 1;
-  return counts;
-}
-
-// Sum of signed tetrahedron volumes: the enclosed volume of a closed mesh, positive when normals point out.
-double signed_volume(const TriangleSoup& soup) {
-  double v = 0.0;
-  for (const glm::uvec4& t : soup.triangles) {
-    const glm::dvec3 a(soup.positions[t.x]), b(soup.positions[t.y]), c(soup.positions[t.z]);
-    v += glm::dot(a, glm::cross(b, c)) / 6.0;
-  }
-  return v;
-}
-
 void expect_closed_and_outward(const TriangleSoup& soup, const char* what) {
-  const EdgeCounts e = count_edges(soup);
+  const MeshTopology e = mesh_topology(soup);
   EXPECT_EQ(e.boundary, 0u) << what;
   EXPECT_EQ(e.nonmanifold, 0u) << what;
   EXPECT_EQ(e.misoriented, 0u) << what;
@@ -163,11 +128,11 @@ TEST(Generators, TreeHasClosedTrunkAndSheetLeaves) {
     leaf_triangles += t.w == kTreeLeafMaterial;
   }
   EXPECT_EQ(leaf_triangles, 2u * 300u);
-  const EdgeCounts trunk = count_edges(tree, kTreeTrunkMaterial);
+  const MeshTopology trunk = mesh_topology(tree, kTreeTrunkMaterial);
   EXPECT_TRUE(trunk.closed());
   EXPECT_EQ(trunk.misoriented, 0u);
   // Leaves: open quads, each with 4 boundary edges and one shared diagonal.
-  const EdgeCounts leaves = count_edges(tree, kTreeLeafMaterial);
+  const MeshTopology leaves = mesh_topology(tree, kTreeLeafMaterial);
   EXPECT_EQ(leaves.boundary, 4u * 300u);
   EXPECT_EQ(leaves.misoriented, 0u);
   // Leaves sit in the crown, above the trunk's base.
@@ -194,7 +159,7 @@ TEST(Generators, PlaneFacesUp) {
   const Bounds b = plane.bounds();
   EXPECT_EQ(b.lo, glm::vec3(-2.0f, 0.0f, -1.0f));
   EXPECT_EQ(b.hi, glm::vec3(2.0f, 0.0f, 1.0f));
-  const EdgeCounts e = count_edges(plane);
+  const MeshTopology e = mesh_topology(plane);
   EXPECT_EQ(e.boundary, size_t(4 * n));
   EXPECT_EQ(e.misoriented, 0u);
 }

@@ -12,6 +12,7 @@
 #include <map>
 #include <string>
 
+#include "core/mesh_topology.h"
 #include "core/error.h"
 #include "core/mesh_loader.h"
 
@@ -120,25 +121,6 @@ std::string cube_stl_binary() {
   return s;
 }
 
-double signed_volume(const TriangleSoup& soup) {
-  double v = 0.0;
-  for (const glm::uvec4& t : soup.triangles) {
-    const glm::dvec3 a(soup.positions[t.x]), b(soup.positions[t.y]), c(soup.positions[t.z]);
-    v += glm::dot(a, glm::cross(b, c)) / 6.0;
-  }
-  return v;
-}
-
-// Closed and consistently oriented: every directed edge once, its reverse once.
-bool closed_and_oriented(const TriangleSoup& soup) {
-  std::map<std::pair<uint32_t, uint32_t>, int> directed;
-  for (const glm::uvec4& t : soup.triangles)
-    for (int c = 0; c < 3; ++c) ++directed[{t[c], t[(c + 1) % 3]}];
-  for (const auto& [edge, n] : directed)
-    if (n != 1 || !directed.count({edge.second, edge.first})) return false;
-  return true;
-}
-
 std::string load_error(const fs::path& file) {
   try {
     load_mesh(file);
@@ -166,7 +148,7 @@ TEST(MeshLoader, LoadsCubeInEveryFormat) {
     const TriangleSoup soup = load_mesh(dir.write(name, content));
     EXPECT_EQ(soup.triangle_count(), 12u);
     EXPECT_EQ(soup.vertex_count(), 8u);  // STL corners are merged
-    EXPECT_TRUE(closed_and_oriented(soup));
+    EXPECT_TRUE(mesh_topology(soup).closed_and_oriented());
     EXPECT_NEAR(signed_volume(soup), 1.0, 1e-6);
     EXPECT_EQ(soup.bounds().lo, glm::vec3(0.0f));
     EXPECT_EQ(soup.bounds().hi, glm::vec3(1.0f));

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "core/mesh_topology.h"
 #include "core/default_scene.h"
 #include "core/error.h"
 #include "core/generators.h"
@@ -73,15 +74,6 @@ std::string scene_error(const std::string& text) {
     return e.what();
   }
   return "no error";
-}
-
-double signed_volume(const TriangleSoup& soup) {
-  double v = 0.0;
-  for (const glm::uvec4& t : soup.triangles) {
-    const glm::dvec3 a(soup.positions[t.x]), b(soup.positions[t.y]), c(soup.positions[t.z]);
-    v += glm::dot(a, glm::cross(b, c)) / 6.0;
-  }
-  return v;
 }
 
 void expect_near(glm::vec3 a, glm::vec3 b, float tolerance = 1e-5f) {

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "core/error.h"
-#include "core/scene.h"
+#include "core/json_reader.h"
 
 namespace voxr {
 

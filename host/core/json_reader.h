@@ -1,0 +1,74 @@
+// Strict reading of JSON objects for scene files and generator parameters: unknown keys, wrong types and
+// out-of-range values are errors naming the key path ("scene.json: 'meshes[1].transform.scale' must ...").
+#pragma once
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace voxr {
+
+// Reads one JSON object of the scene format. The constructor fails on any key outside `allowed` (suggesting
+// an allowed key spelled alike), so a typo is reported before a missing required key. Errors read
+// "<where>: '<path>.<key>' must be ...", "<where>: missing required key '<path>.<key>'" and
+// "<where>: unknown key '<path>.<key>'".
+class JsonObjectReader {
+ public:
+  // Fails unless `value` is an object whose keys are all in `allowed`. `path` is the object's key path
+  // ("" for the root).
+  JsonObjectReader(const nlohmann::json& value, std::string where, std::string path,
+                   std::initializer_list<std::string_view> allowed);
+
+  const std::string& where() const { return where_; }
+  // "path.key", or "key" at the root.
+  std::string path(std::string_view key) const;
+  bool has(std::string_view key) const;
+  // The value, or nullptr when the key is absent.
+  const nlohmann::json* get(std::string_view key) const;
+
+  // Required (no fallback) or optional values. Numbers must be finite; integers must lie in [lo, hi].
+  float number(std::string_view key, std::optional<float> fallback = std::nullopt) const;
+  int64_t integer(std::string_view key, std::optional<int64_t> fallback, int64_t lo, int64_t hi) const;
+  std::string string(std::string_view key, std::optional<std::string> fallback = std::nullopt) const;
+  glm::vec3 vec3(std::string_view key, std::optional<glm::vec3> fallback = std::nullopt) const;
+  glm::vec2 vec2(std::string_view key, std::optional<glm::vec2> fallback = std::nullopt) const;
+  std::vector<float> numbers(std::string_view key,
+                             std::optional<std::vector<float>> fallback = std::nullopt) const;
+
+  // Throws "<where>: '<path>.<key>' <what> (got <value>)" unless `ok`.
+  void require(bool ok, std::string_view key, std::string_view what) const;
+  [[noreturn]] void fail_key(std::string_view key, std::string_view what) const;
+  // Fails when `key` is present: it is allowed in general but not here (`why`, e.g. "is not used by kind
+  // 'opaque'").
+  void forbid(std::string_view key, std::string_view why) const;
+
+ private:
+  const nlohmann::json& required(std::string_view key) const;
+  void check_allowed(std::string_view key) const;
+
+  const nlohmann::json& value_;
+  std::string where_;
+  std::string path_;
+  std::vector<std::string_view> allowed_;
+};
+
+// "where: 'path' <what>" for a value that is not inside an object (an array element, say).
+[[noreturn]] void fail_json_value(const std::string& where, const std::string& path, std::string_view what);
+// The value at `path` as a 3-vector of finite numbers.
+glm::vec3 json_vec3(const nlohmann::json& value, const std::string& where, const std::string& path);
+
+// Compact JSON of a value for messages, cut to a readable length.
+std::string shown(const nlohmann::json& value);
+// "a, b, c".
+std::string join(const std::vector<std::string_view>& items);
+// "base.key", or "key" when base is empty.
+std::string join_path(const std::string& base, std::string_view key);
+
+}  // namespace voxr
