@@ -27,7 +27,8 @@ const TriangleSoup& mesh(const std::string& name) {
   return it->second.soup;
 }
 
-void voxelize(benchmark::State& state, const std::string& name, const std::string& channels, RasterMode mode) {
+void voxelize(benchmark::State& state, const std::string& name, const std::string& channels,
+              RasterMode mode) {
   ClRuntime& cl = runtime();
   const TriangleSoup* soup = nullptr;
   try {
@@ -89,11 +90,29 @@ void BM_Scan(benchmark::State& state) {
   state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(n) * 12);
 }
 
-BENCHMARK_CAPTURE(BM_VoxelizeOcc, torus, std::string("torus"))->Arg(256)->Arg(512)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_VoxelizeOcc, bunny, std::string("bunny"))->Arg(256)->Arg(512)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_VoxelizeOcc, bunnyx16, std::string("bunnyx16"))->Arg(512)->Arg(1024)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_VoxelizeCountNormal, bunnyx16, std::string("bunnyx16"))->Arg(512)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_VoxelizeCenter, bunnyx16, std::string("bunnyx16"))->Arg(512)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_VoxelizeOcc, torus, std::string("torus"))
+    ->Arg(256)
+    ->Arg(512)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_VoxelizeOcc, bunny, std::string("bunny"))
+    ->Arg(256)
+    ->Arg(512)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_VoxelizeOcc, bunnyx16, std::string("bunnyx16"))
+    ->Arg(512)
+    ->Arg(1024)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_VoxelizeCountNormal, bunnyx16, std::string("bunnyx16"))
+    ->Arg(512)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_VoxelizeCenter, bunnyx16, std::string("bunnyx16"))
+    ->Arg(512)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Scan)->Arg(1 << 20)->Arg(1 << 24)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace

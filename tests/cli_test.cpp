@@ -32,7 +32,8 @@ std::string slurp(const fs::path& p) {
 
 Result run(const std::string& args) {
   const fs::path out = scratch() / "stdout.txt", err = scratch() / "stderr.txt";
-  const std::string cmd = std::string(VOXR_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const std::string cmd =
+      std::string(VOXR_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }
@@ -60,14 +61,17 @@ TEST(Cli, VoxelizeWritesVolumesAndReport) {
   EXPECT_TRUE(fs::exists(out));
   EXPECT_TRUE(fs::exists(scratch() / "tetra.count.nrrd"));
   const nlohmann::json j = nlohmann::json::parse(slurp(report));
-  for (const char* key : {"device", "triangles", "dims", "copies", "voxels_set"}) EXPECT_TRUE(j.contains(key)) << key;
+  for (const char* key : {"device", "triangles", "dims", "copies", "voxels_set"})
+    EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["triangles"], 4);
   EXPECT_GT(j["voxels_set"].get<uint64_t>(), 0u);
   for (const char* key : {"upload", "kernels", "total", "stages"}) EXPECT_TRUE(j["ms"].contains(key)) << key;
   EXPECT_TRUE(j["ms"]["stages"].contains("raster"));
 }
 
-TEST(Cli, MissingFile) { expect_one_line_error(run("voxelize /nonexistent/mesh.obj"), "/nonexistent/mesh.obj"); }
+TEST(Cli, MissingFile) {
+  expect_one_line_error(run("voxelize /nonexistent/mesh.obj"), "/nonexistent/mesh.obj");
+}
 
 TEST(Cli, GarbledFile) {
   const fs::path p = write_file("garbage.off", std::string("\x01\x02OFF\xff\xfe garbage \x00\x13", 18));
@@ -99,8 +103,8 @@ TEST(Cli, BadChannelModeAndExtension) {
   expect_one_line_error(run("voxelize " + p.string() + " --channels occ,colour"), "colour");
   expect_one_line_error(run("voxelize " + p.string() + " --mode sideways"), "sideways");
   expect_one_line_error(run("voxelize " + p.string() + " -o " + (scratch() / "x.png").string()), "x.png");
-  expect_one_line_error(run("voxelize " + p.string() + " --dims 4,5,6 -o " + (scratch() / "x.binvox").string()),
-                        "x.binvox");
+  expect_one_line_error(
+      run("voxelize " + p.string() + " --dims 4,5,6 -o " + (scratch() / "x.binvox").string()), "x.binvox");
 }
 
 }  // namespace

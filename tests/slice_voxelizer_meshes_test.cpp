@@ -154,15 +154,18 @@ uint64_t wall_holes(const VoxelGrid& g, float slope, float offset) {
 TEST(SliceVoxelizerMeshes, CenterModeLeavesHolesInSteepWallsConservativeDoesNot) {
   const float slope = 0.2f, offset = 0.4f;  // nearly parallel to the slicing axis z
   TriangleSoup wall;
-  wall.positions = {{slope * -1 + offset, -1, -1, 1}, {slope * -1 + offset, 1, -1, 1},
-                    {slope * 1 + offset, 1, 1, 1}, {slope * 1 + offset, -1, 1, 1}};
+  wall.positions = {{slope * -1 + offset, -1, -1, 1},
+                    {slope * -1 + offset, 1, -1, 1},
+                    {slope * 1 + offset, 1, 1, 1},
+                    {slope * 1 + offset, -1, 1, 1}};
   wall.triangles = {{0, 1, 2, 0}, {0, 2, 3, 0}};
   GridRequest r;
   r.bounds = Bounds{{-1, -1, -1}, {1, 1, 1}};
   r.resolution = 64;
   const GridSpec grid = fit_grid({}, r);
   const uint64_t center_holes = wall_holes(run_kernels(wall, grid, RasterMode::kCenter), slope, offset);
-  const uint64_t conservative_holes = wall_holes(run_kernels(wall, grid, RasterMode::kConservative), slope, offset);
+  const uint64_t conservative_holes =
+      wall_holes(run_kernels(wall, grid, RasterMode::kConservative), slope, offset);
   // Centre sampling covers one column in 1/slope = 5 along x for this wall: most rows have a hole.
   EXPECT_GT(center_holes, 64u * 64u / 2);
   EXPECT_EQ(conservative_holes, 0u);

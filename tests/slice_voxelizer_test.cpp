@@ -9,7 +9,9 @@
 namespace voxr {
 namespace {
 
-ChannelSet all_channels() { return ChannelSet::parse("occ,count,normal,material"); }
+ChannelSet all_channels() {
+  return ChannelSet::parse("occ,count,normal,material");
+}
 
 void expect_matches_reference(const TriangleSoup& soup, const GridSpec& grid, RasterMode mode,
                               uint32_t rows_per_copy = 4) {
@@ -60,7 +62,8 @@ TEST(SliceVoxelizer, BoxOnVoxelFacesAtSeveralResolutions) {
 
 TEST(SliceVoxelizer, RowsPerCopyDoesNotChangeTheResult) {
   const TriangleSoup soup = test::random_soup(4, 200, -1.0f, 1.0f, 1.0f);
-  for (uint32_t rows : {1u, 3u, 16u}) expect_matches_reference(soup, fitted(soup, 32), RasterMode::kConservative, rows);
+  for (uint32_t rows : {1u, 3u, 16u})
+    expect_matches_reference(soup, fitted(soup, 32), RasterMode::kConservative, rows);
 }
 
 TEST(SliceVoxelizer, BatchesGiveTheSameGrid) {

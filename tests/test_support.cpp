@@ -52,7 +52,8 @@ std::string compare_grids(const VoxelGrid& expected, const VoxelGrid& actual, fl
         note(linear, fmt::format("normal sum ({},{},{}) vs ({},{},{})", expected.normal_sum[r].x,
                                  expected.normal_sum[r].y, expected.normal_sum[r].z, actual.normal_sum[r].x,
                                  actual.normal_sum[r].y, actual.normal_sum[r].z));
-      if (!expected.normal.empty() && glm::length(expected.normal[r] - actual.normal.at(r)) > normal_tolerance)
+      if (!expected.normal.empty() &&
+          glm::length(expected.normal[r] - actual.normal.at(r)) > normal_tolerance)
         note(linear, "normal differs");
     });
   }
@@ -70,7 +71,8 @@ TriangleSoup random_soup(uint32_t seed, size_t count, float lo, float hi, float 
     const uint32_t base = uint32_t(soup.positions.size());
     soup.positions.push_back(glm::vec4(a, 1.0f));
     for (int c = 0; c < 2; ++c)
-      soup.positions.push_back(glm::vec4(glm::clamp(a + glm::vec3(off(rng), off(rng), off(rng)), lo, hi), 1.0f));
+      soup.positions.push_back(
+          glm::vec4(glm::clamp(a + glm::vec3(off(rng), off(rng), off(rng)), lo, hi), 1.0f));
     soup.triangles.push_back({base, base + 1, base + 2, uint32_t(t % 5)});
   }
   return soup;
@@ -80,7 +82,8 @@ TriangleSoup box_soup(glm::vec3 lo, glm::vec3 hi, uint32_t material) {
   TriangleSoup s;
   for (int c = 0; c < 8; ++c)
     s.positions.push_back(glm::vec4(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z, 1.0f));
-  const uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  const uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   for (const auto& f : faces) {
     s.triangles.push_back({f[0], f[1], f[2], material});
     s.triangles.push_back({f[0], f[2], f[3], material});

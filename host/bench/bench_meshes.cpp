@@ -31,8 +31,10 @@ TriangleSoup base_mesh(const std::string& base) {
   if (base == "armadillo") return load_packaged("armadillo.off");
   if (base == "dragon") return load_packaged("ChineseDragon-10kv.off");
   if (base == "elephant") return load_packaged("refined_elephant.off");
-  fail("unknown benchmark mesh '{}' (torus, sphere, bunny, armadillo, dragon, elephant; append xN to subdivide)",
-       base);
+  fail(
+      "unknown benchmark mesh '{}' (torus, sphere, bunny, armadillo, dragon, elephant; append xN to "
+      "subdivide)",
+      base);
 }
 
 }  // namespace
@@ -41,7 +43,8 @@ BenchMesh make_bench_mesh(const std::string& name) {
   const size_t x = name.rfind('x');
   std::string base = name;
   int levels = 0;
-  if (x != std::string::npos && x + 1 < name.size() && std::isdigit(static_cast<unsigned char>(name[x + 1]))) {
+  if (x != std::string::npos && x + 1 < name.size() &&
+      std::isdigit(static_cast<unsigned char>(name[x + 1]))) {
     base = name.substr(0, x);
     const long factor = std::strtol(name.c_str() + x + 1, nullptr, 10);
     long f = 1;
@@ -57,8 +60,8 @@ BenchMesh make_bench_mesh(const std::string& name) {
 }
 
 const std::vector<std::string>& default_bench_meshes() {
-  static const std::vector<std::string> names = {"torus", "bunny", "armadillo", "bunnyx4", "armadillox4",
-                                                 "bunnyx16", "armadillox16"};
+  static const std::vector<std::string> names = {"torus",       "bunny",    "armadillo",   "bunnyx4",
+                                                 "armadillox4", "bunnyx16", "armadillox16"};
   return names;
 }
 

@@ -7,7 +7,8 @@ namespace voxr {
 const char* cl_status_name(cl_int status) {
   switch (status) {
 #define VOXR_CASE(x) \
-  case x: return #x;
+  case x:            \
+    return #x;
     VOXR_CASE(CL_SUCCESS)
     VOXR_CASE(CL_DEVICE_NOT_FOUND)
     VOXR_CASE(CL_DEVICE_NOT_AVAILABLE)
@@ -50,7 +51,8 @@ const char* cl_status_name(cl_int status) {
     VOXR_CASE(CL_INVALID_GLOBAL_WORK_SIZE)
     VOXR_CASE(CL_PLATFORM_NOT_FOUND_KHR)
 #undef VOXR_CASE
-    default: return "unknown OpenCL status";
+    default:
+      return "unknown OpenCL status";
   }
 }
 

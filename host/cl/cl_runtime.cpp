@@ -37,7 +37,8 @@ std::string ClRuntime::load_source(const std::string& file) const {
 namespace {
 
 // Inlines `#include "x.h"` lines (each file once), so embedded sources need no include path.
-std::string expand_includes(const std::string& source, const std::function<std::string(const std::string&)>& load,
+std::string expand_includes(const std::string& source,
+                            const std::function<std::string(const std::string&)>& load,
                             std::set<std::string>& seen) {
   std::istringstream in(source);
   std::string line, out;
@@ -64,8 +65,8 @@ cl::Kernel ClRuntime::kernel(const std::string& file, const std::string& name, c
   auto it = programs_.find(cache_key);
   if (it == programs_.end()) {
     std::set<std::string> seen;
-    const std::string source =
-        expand_includes(load_source(file), [this](const std::string& f) { return load_source(f); }, seen);
+    const std::string source = expand_includes(
+        load_source(file), [this](const std::string& f) { return load_source(f); }, seen);
     cl::Program program(context_, source);
     try {
       program.build({device_.device}, options.c_str());
@@ -91,7 +92,8 @@ cl::Kernel ClRuntime::kernel(const std::string& file, const std::string& name, c
 void ClRuntime::enqueue(const std::string& name, cl::Kernel& kernel, size_t global, size_t local) {
   const size_t rounded = (global + local - 1) / local * local;
   cl::Event event;
-  queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(rounded), cl::NDRange(local), nullptr, &event);
+  queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(rounded), cl::NDRange(local), nullptr,
+                              &event);
   profiler_.record(name, event);
 #ifndef NDEBUG
   finish("running kernel " + name);
@@ -101,9 +103,10 @@ void ClRuntime::enqueue(const std::string& name, cl::Kernel& kernel, size_t glob
 cl::Buffer ClRuntime::buffer(uint64_t bytes, const std::string& what, cl_mem_flags flags) {
   bytes = std::max<uint64_t>(bytes, 4);
   if (bytes > device_.max_allocation)
-    fail("{} needs {:.1f} MiB but the largest buffer {} allows is {:.1f} MiB; use a smaller grid (--res) or "
-         "fewer channels",
-         what, double(bytes) / (1 << 20), device_.name, double(device_.max_allocation) / (1 << 20));
+    fail(
+        "{} needs {:.1f} MiB but the largest buffer {} allows is {:.1f} MiB; use a smaller grid (--res) or "
+        "fewer channels",
+        what, double(bytes) / (1 << 20), device_.name, double(device_.max_allocation) / (1 << 20));
   try {
     return cl::Buffer(context_, flags, bytes);
   } catch (const cl::Error& e) {

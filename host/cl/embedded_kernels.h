@@ -7,7 +7,7 @@
 namespace voxr {
 
 struct EmbeddedKernel {
-  std::string_view name;    // file name, e.g. "vox_raster.cl"
+  std::string_view name;  // file name, e.g. "vox_raster.cl"
   std::string_view source;
 };
 

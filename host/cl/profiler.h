@@ -24,7 +24,7 @@ class Profiler {
 
   std::map<std::string, Stat> stats() const;
   double total_ms(const std::string& name) const;  // 0 when never recorded
-  double sum_ms() const;                            // every kernel and transfer
+  double sum_ms() const;                           // every kernel and transfer
   // Aligned text table, one row per name, sorted by total time.
   std::string table() const;
 

@@ -9,9 +9,9 @@
 namespace voxr {
 
 enum class ScanKind {
-  kUintToUlong,     // uint counts -> ulong offsets (copy offsets)
-  kRankedWords,     // uint occupancy words -> ulong (rank of the word's first set bit << 32) | word
-  kUlongToUlong,    // ulong -> ulong (the recursion over tile totals)
+  kUintToUlong,   // uint counts -> ulong offsets (copy offsets)
+  kRankedWords,   // uint occupancy words -> ulong (rank of the word's first set bit << 32) | word
+  kUlongToUlong,  // ulong -> ulong (the recursion over tile totals)
 };
 
 // Scans `n` elements of `in` into `out` and returns the grand total (exact in 64 bits even where `out`

@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "bench/bench_meshes.h"
-#include "cli/commands.h"
 #include "cl/cl_runtime.h"
+#include "cli/commands.h"
 #include "voxelize/slice_voxelizer.h"
 
 namespace voxr::cli {
@@ -26,7 +26,8 @@ struct BenchArgs {
   int warmup = 1;
 };
 
-const char* const kStages[] = {"clear", "setup", "scan", "expand", "raster", "rank", "attributes", "finalize"};
+const char* const kStages[] = {"clear",  "setup", "scan",       "expand",
+                               "raster", "rank",  "attributes", "finalize"};
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -73,9 +74,9 @@ int run_bench_voxelize(const BenchArgs& args) {
         return it == s.stage_ms.end() ? 0.0 : it->second;
       });
       const std::string dims = fmt::format("{}x{}x{}", grid.dims.x, grid.dims.y, grid.dims.z);
-      csv += fmt::format("\"{}\",\"{}\",{},{},{},{},{},\"{}\",{},{},{}", cl.device().name, cl.device().driver_version,
-                         name, s0.triangles, res, dims, args.mode, options.channels.to_string(), s0.copies,
-                         s0.voxels_set, runs.size());
+      csv += fmt::format("\"{}\",\"{}\",{},{},{},{},{},\"{}\",{},{},{}", cl.device().name,
+                         cl.device().driver_version, name, s0.triangles, res, dims, args.mode,
+                         options.channels.to_string(), s0.copies, s0.voxels_set, runs.size());
       for (const char* stage : kStages)
         csv += fmt::format(",{:.4f}", med([&](const VoxelizeStats& s) {
                              const auto it = s.stage_ms.find(stage);
@@ -84,8 +85,8 @@ int run_bench_voxelize(const BenchArgs& args) {
       csv += fmt::format(",{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}\n",
                          med([](const VoxelizeStats& s) { return s.upload_ms; }), kernels,
                          med([](const VoxelizeStats& s) { return s.readback_ms; }), total, no_upload);
-      fmt::print("{:<14} {:>9} {:>5} {:>16} {:>9} {:>9} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f}\n", name, s0.triangles,
-                 res, dims, s0.copies, s0.voxels_set, raster, kernels, total, no_upload);
+      fmt::print("{:<14} {:>9} {:>5} {:>16} {:>9} {:>9} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f}\n", name,
+                 s0.triangles, res, dims, s0.copies, s0.voxels_set, raster, kernels, total, no_upload);
       std::fflush(stdout);
     }
   }
@@ -101,11 +102,13 @@ int run_bench_voxelize(const BenchArgs& args) {
 }  // namespace
 
 Command add_bench(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("bench", "Benchmarks (medians of repeated runs, profiled on the device)");
+  CLI::App* sub =
+      app.add_subcommand("bench", "Benchmarks (medians of repeated runs, profiled on the device)");
   sub->require_subcommand(1);
   auto args = std::make_shared<BenchArgs>();
   CLI::App* vox = sub->add_subcommand("voxelize", "Slice voxelizer over meshes x resolutions -> CSV");
-  vox->add_option("--meshes", args->meshes, "benchmark meshes (torus, bunny, armadillo, ...; BASExN subdivides)")
+  vox->add_option("--meshes", args->meshes,
+                  "benchmark meshes (torus, bunny, armadillo, ...; BASExN subdivides)")
       ->delimiter(',')
       ->capture_default_str();
   vox->add_option("--res", args->resolutions, "resolutions (voxels on the longest axis)")
@@ -119,7 +122,9 @@ Command add_bench(CLI::App& app) {
   vox->add_option("--repeat", args->repeat, "timed runs per case (median reported)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  vox->add_option("--warmup", args->warmup, "untimed runs first")->check(CLI::Range(0, 100))->capture_default_str();
+  vox->add_option("--warmup", args->warmup, "untimed runs first")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
   return {sub, [args, vox] {
             if (vox->parsed()) return run_bench_voxelize(*args);
             return 2;

@@ -1,6 +1,6 @@
 // voxr command line: one options struct and one file per subcommand (host/cli/cmd_*.cpp).
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include <cstdio>
 
@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "voxr 0.1.0");
   // One line per failure: "voxr: error: --res: Value 0 not in range 1 to 16384".
-  app.failure_message([](const CLI::App*, const CLI::Error& e) { return fmt::format("voxr: error: {}\n", e.what()); });
+  app.failure_message(
+      [](const CLI::App*, const CLI::Error& e) { return fmt::format("voxr: error: {}\n", e.what()); });
   const voxr::cli::Command commands[] = {voxr::cli::add_devices(app), voxr::cli::add_voxelize(app),
                                          voxr::cli::add_bench(app)};
   try {

@@ -45,7 +45,8 @@ Bounds parse_bounds(const std::string& text, const std::string& flag) {
   b.lo = glm::vec3(v[0], v[1], v[2]);
   b.hi = glm::vec3(v[3], v[4], v[5]);
   for (int a = 0; a < 3; ++a)
-    if (!(b.lo[a] < b.hi[a])) fail("{} '{}': the low corner must be below the high corner on every axis", flag, text);
+    if (!(b.lo[a] < b.hi[a]))
+      fail("{} '{}': the low corner must be below the high corner on every axis", flag, text);
   return b;
 }
 

@@ -27,19 +27,19 @@ template <typename... Args>
 
 }  // namespace voxr
 
-#define VOXR_CHECK(cond)                                                                      \
-  do {                                                                                        \
-    if (!(cond))                                                                              \
+#define VOXR_CHECK(cond)                                                                              \
+  do {                                                                                                \
+    if (!(cond))                                                                                      \
       throw ::voxr::InternalError(fmt::format("{}:{}: CHECK({}) failed", __FILE__, __LINE__, #cond)); \
   } while (0)
 
-#define VOXR_CHECK_OP(a, op, b)                                                                       \
-  do {                                                                                                \
-    const auto& voxr_a_ = (a);                                                                        \
-    const auto& voxr_b_ = (b);                                                                        \
-    if (!(voxr_a_ op voxr_b_))                                                                        \
+#define VOXR_CHECK_OP(a, op, b)                                                                              \
+  do {                                                                                                       \
+    const auto& voxr_a_ = (a);                                                                               \
+    const auto& voxr_b_ = (b);                                                                               \
+    if (!(voxr_a_ op voxr_b_))                                                                               \
       throw ::voxr::InternalError(fmt::format("{}:{}: CHECK({} {} {}) failed: {} vs {}", __FILE__, __LINE__, \
-                                              #a, #op, #b, voxr_a_, voxr_b_));                        \
+                                              #a, #op, #b, voxr_a_, voxr_b_));                               \
   } while (0)
 
 #define VOXR_CHECK_EQ(a, b) VOXR_CHECK_OP(a, ==, b)

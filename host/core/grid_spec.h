@@ -14,7 +14,7 @@
 namespace voxr {
 
 struct GridSpec {
-  glm::mat3 axes{1.0f};  // columns: the grid's x, y, z axes in world space (orthonormal)
+  glm::mat3 axes{1.0f};    // columns: the grid's x, y, z axes in world space (orthonormal)
   glm::vec3 origin{0.0f};  // world position of the grid's corner (0,0,0)
   float voxel_size = 1.0f;
   glm::uvec3 dims{1, 1, 1};
@@ -32,10 +32,10 @@ struct GridSpec {
 // How the user asked for the grid. Exactly one of `resolution` and `dims` is used; `bounds` defaults to
 // the scene bounds grown by a margin.
 struct GridRequest {
-  uint32_t resolution = 256;          // voxels along the longest axis of the bounds
-  std::optional<glm::uvec3> dims;     // exact dimensions; voxels stay cubes, the bounds grow to fit
-  std::optional<Bounds> bounds;       // world box to voxelize
-  float margin_voxels = 0.5f;         // margin added around fitted bounds, in voxels
+  uint32_t resolution = 256;       // voxels along the longest axis of the bounds
+  std::optional<glm::uvec3> dims;  // exact dimensions; voxels stay cubes, the bounds grow to fit
+  std::optional<Bounds> bounds;    // world box to voxelize
+  float margin_voxels = 0.5f;      // margin added around fitted bounds, in voxels
 };
 
 // Largest dimension along one axis; 64-bit indices keep 2048^3 and beyond addressable.

@@ -47,7 +47,6 @@ std::string join_path(const std::string& base, std::string_view key) {
   return base.empty() ? std::string(key) : base + "." + std::string(key);
 }
 
-
 void fail_json_value(const std::string& where, const std::string& path, std::string_view what) {
   fail("{}: '{}' {}", where, path, what);
 }

@@ -10,7 +10,9 @@ namespace {
 using i128 = __int128;
 constexpr int64_t S = VOXR_SUBVOXEL;
 
-int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+int64_t floor_div(int64_t a, int64_t b) {
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
 
 }  // namespace
 

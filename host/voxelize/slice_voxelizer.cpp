@@ -29,7 +29,9 @@ std::map<std::string, double> profile_since(const Profiler& profiler,
   return out;
 }
 
-bool is_prefixed(const std::string& name, const char* prefix) { return name.rfind(prefix, 0) == 0; }
+bool is_prefixed(const std::string& name, const char* prefix) {
+  return name.rfind(prefix, 0) == 0;
+}
 
 }  // namespace
 
@@ -70,7 +72,8 @@ VoxelGrid SliceVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, co
   if (stats) {
     stats->triangles_split = split;
     stats->upload_ms = upload_ms;
-    stats->wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats->wall_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
   return result;
 }
@@ -95,7 +98,8 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
   const uint64_t voxels = grid.voxel_count();
   const uint64_t words = (voxels + 31) / 32;
   const uint64_t tris = mesh.triangle_count();
-  const Defines mode = {{"VOXR_MODE", std::to_string(int(options.mode))}, {"WG_SIZE", std::to_string(kGroup)}};
+  const Defines mode = {{"VOXR_MODE", std::to_string(int(options.mode))},
+                        {"WG_SIZE", std::to_string(kGroup)}};
   uint64_t device_bytes = 0;
   auto alloc = [&](uint64_t bytes, const std::string& what) {
     device_bytes += bytes;
@@ -137,8 +141,8 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
         cl_.launch("expand", expand, tris, kGroup, cl_uint(tris), counts, offsets, info, cl_ulong(begin),
                    cl_ulong(end), records);
       expanded = true;
-      cl_.launch(name, raster, end - begin, kGroup, params, snapped, records, cl_uint(end - begin), occ, ranks,
-                 acc, material);
+      cl_.launch(name, raster, end - begin, kGroup, params, snapped, records, cl_uint(end - begin), occ,
+                 ranks, acc, material);
     }
   };
 
@@ -161,7 +165,8 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
     // Count and normal sums accumulate packed in two 64-bit words per voxel (see vox_raster.cl).
     const bool packed = options.channels.has(Channel::kCount) || options.channels.has(Channel::kNormal);
     if (packed && cl_.device().extensions.find("cl_khr_int64_base_atomics") == std::string::npos)
-      fail("{} lacks cl_khr_int64_base_atomics, which the count and normal channels need", cl_.device().label());
+      fail("{} lacks cl_khr_int64_base_atomics, which the count and normal channels need",
+           cl_.device().label());
     auto zeroed = [&](bool wanted, uint64_t bytes, const char* what) {
       if (!wanted) return dummy;
       cl::Buffer b = alloc(bytes, what);
@@ -228,7 +233,8 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
         stats->stage_ms[name] += ms;
       }
     }
-    stats->wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats->wall_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
   return out;
 }

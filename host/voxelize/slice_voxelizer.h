@@ -22,8 +22,8 @@ namespace voxr {
 struct VoxelizeOptions {
   RasterMode mode = RasterMode::kConservative;
   ChannelSet channels;
-  uint32_t rows_per_copy = 4;                  // rows of a slab one raster work item walks
-  uint64_t copy_budget_bytes = 256ull << 20;   // device memory for copy records per batch
+  uint32_t rows_per_copy = 4;                              // rows of a slab one raster work item walks
+  uint64_t copy_budget_bytes = 256ull << 20;               // device memory for copy records per batch
   std::function<void(const std::string& stage)> progress;  // optional, called between stages
 };
 
@@ -33,11 +33,11 @@ struct VoxelizeStats {
   uint64_t copies = 0;           // (triangle, slab, row block) records
   uint64_t batches = 0;
   uint64_t voxels_set = 0;
-  uint64_t device_bytes = 0;     // device memory the run's buffers need
-  double upload_ms = 0.0;        // from profiling events
+  uint64_t device_bytes = 0;  // device memory the run's buffers need
+  double upload_ms = 0.0;     // from profiling events
   double kernels_ms = 0.0;
   double readback_ms = 0.0;
-  double wall_ms = 0.0;          // host clock around the whole run, including waits
+  double wall_ms = 0.0;                    // host clock around the whole run, including waits
   std::map<std::string, double> stage_ms;  // per kernel stage
   double total_ms() const { return upload_ms + kernels_ms + readback_ms; }
 };
