@@ -83,3 +83,29 @@ TEST(SliceVoxelizer, BatchesGiveTheSameGrid) {
 
 }  // namespace
 }  // namespace voxr
+
+namespace voxr {
+namespace {
+
+TEST(SliceVoxelizer, GridBaselineEqualsSliceMethod) {
+  // Llamas' per-slab passes and the papers' duplication share the scanline code: identical voxels.
+  const TriangleSoup soup = test::random_soup(6, 300, -1.0f, 1.0f, 0.8f);
+  const GridSpec grid = fitted(soup, 40);
+  SliceVoxelizer voxelizer(test::runtime());
+  for (RasterMode mode : {RasterMode::kConservative, RasterMode::kCenter}) {
+    VoxelizeOptions slice;
+    slice.mode = mode;
+    slice.channels = all_channels();
+    VoxelizeOptions per_slab = slice;
+    per_slab.method = VoxelizeMethod::kGrid;
+    VoxelizeStats stats;
+    const VoxelGrid a = voxelizer.run(soup, grid, slice);
+    const VoxelGrid b = voxelizer.run(soup, grid, per_slab, &stats);
+    EXPECT_EQ(stats.work_items, soup.triangle_count() * grid.dims.z);
+    EXPECT_EQ(test::compare_grids(a, b, 0.0f), "") << raster_mode_name(mode);
+    EXPECT_EQ(test::compare_grids(reference_voxelize(soup, grid, mode, slice.channels), b), "");
+  }
+}
+
+}  // namespace
+}  // namespace voxr

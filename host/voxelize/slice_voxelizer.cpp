@@ -119,7 +119,10 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
   cl::Kernel setup = cl_.kernel("vox_setup.cl", "vox_setup", mode);
   cl_.launch("setup", setup, tris, kGroup, params, mesh.positions(), mesh.triangles(), snapped, counts, info,
              too_large);
-  const uint64_t copies = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, tris, "scan");
+  // The Grid baseline needs no copies: every slab's launch visits every triangle.
+  const bool grid_method = options.method == VoxelizeMethod::kGrid;
+  const uint64_t copies =
+      grid_method ? 0 : exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, tris, "scan");
   cl_uint oversized = 0;
   cl_.download(too_large, &oversized, 4, "readback split check");
   if (oversized)
@@ -130,27 +133,33 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
   const uint64_t batches = copies == 0 ? 0 : (copies + batch - 1) / batch;
   cl::Buffer records = alloc(batch * sizeof(VoxCopy), "copy records");
   cl::Kernel expand = cl_.kernel("vox_expand.cl", "vox_expand", mode);
-  // Expands and rasterizes every batch of copies with `raster`; a single batch is expanded once and
-  // reused by the second pass.
+  // Rasterizes every copy with the pass's kernel: batches of expanded records (a single batch is expanded
+  // once and reused by the second pass), or for the Grid baseline one launch per slab over all triangles.
   bool expanded = false;
-  auto raster_all = [&](const char* name, cl::Kernel& raster, const cl::Buffer& ranks, const cl::Buffer& acc,
+  auto raster_all = [&](const char* name, const Defines& pass, const cl::Buffer& ranks, const cl::Buffer& acc,
                         const cl::Buffer& material) {
+    if (grid_method) {
+      cl::Kernel slab_kernel = cl_.kernel("vox_grid.cl", "vox_grid", pass);
+      for (uint32_t k = 0; k < grid.dims.z; ++k)
+        cl_.launch(name, slab_kernel, tris, kGroup, params, snapped, cl_uint(k), occ, ranks, acc, material);
+      return;
+    }
+    cl::Kernel raster = cl_.kernel("vox_raster.cl", "vox_raster", pass);
     for (uint64_t b = 0; b < batches; ++b) {
       const uint64_t begin = b * batch, end = std::min(copies, begin + batch);
       if (batches > 1 || !expanded)
         cl_.launch("expand", expand, tris, kGroup, cl_uint(tris), counts, offsets, info, cl_ulong(begin),
                    cl_ulong(end), records);
       expanded = true;
-      cl_.launch(name, raster, end - begin, kGroup, params, snapped, records, cl_uint(end - begin), occ,
-                 ranks, acc, material);
+      cl_.launch(name, raster, end - begin, kGroup, params, snapped, records, cl_uint(end - begin), occ, ranks,
+                 acc, material);
     }
   };
 
   progress("raster");
   Defines pass0 = mode;
   pass0.push_back({"VOX_PASS", "0"});
-  cl::Kernel raster0 = cl_.kernel("vox_raster.cl", "vox_raster", pass0);
-  raster_all("raster", raster0, dummy, dummy, dummy);
+  raster_all("raster", pass0, dummy, dummy, dummy);
 
   VoxelGrid out;
   out.spec = grid;
@@ -179,8 +188,7 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
     Defines pass1 = mode;
     pass1.push_back({"VOX_PASS", "1"});
     pass1.push_back({"VOX_CHANNELS", channel_bits});
-    cl::Kernel raster1 = cl_.kernel("vox_raster.cl", "vox_raster", pass1);
-    raster_all("attributes", raster1, ranks, acc, material);
+    raster_all("attributes", pass1, ranks, acc, material);
 
     if (packed) {
       const bool normals = options.channels.has(Channel::kNormal);
@@ -220,6 +228,7 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
     *stats = VoxelizeStats{};
     stats->triangles = tris;
     stats->copies = copies;
+    stats->work_items = grid_method ? tris * grid.dims.z : copies;
     stats->batches = batches;
     stats->voxels_set = out.voxels_set;
     stats->device_bytes = device_bytes;

@@ -19,7 +19,12 @@
 
 namespace voxr {
 
+// How triangles reach the slabs: the papers' one-pass duplication (one record per copy), or the "Grid"
+// baseline of their Table 1 (Llamas 2007): one pass per slab over every triangle. Same voxels either way.
+enum class VoxelizeMethod { kSlice, kGrid };
+
 struct VoxelizeOptions {
+  VoxelizeMethod method = VoxelizeMethod::kSlice;
   RasterMode mode = RasterMode::kConservative;
   ChannelSet channels;
   uint32_t rows_per_copy = 4;                              // rows of a slab one raster work item walks
@@ -30,7 +35,8 @@ struct VoxelizeOptions {
 struct VoxelizeStats {
   uint64_t triangles = 0;        // uploaded (after splitting oversized triangles)
   uint64_t triangles_split = 0;  // input triangles that were split
-  uint64_t copies = 0;           // (triangle, slab, row block) records
+  uint64_t copies = 0;           // (triangle, slab, row block) records; 0 for the Grid baseline
+  uint64_t work_items = 0;       // raster work items: copies, or triangles x slabs for Grid
   uint64_t batches = 0;
   uint64_t voxels_set = 0;
   uint64_t device_bytes = 0;  // device memory the run's buffers need

@@ -1,0 +1,25 @@
+/* vox_grid.cl — the "Grid" baseline (Llamas 2007, Table 1 of the papers): one launch per slab, in which
+ * every triangle checks whether it reaches the slab and, if so, rasterizes all its rows there
+ * (vox_scanline.h, the same exact rules as the slice method). Cost grows with slabs x triangles.
+ * in:  snapped triangles (vox_setup.cl), the slab k; pass 1 also the ranked occupancy words
+ * out: occupancy bits (pass 0) or the attribute accumulators (pass 1)
+ * shape: one work item per triangle, one launch per slab. */
+#include "vox_scanline.h"
+
+#ifndef WG_SIZE
+#define WG_SIZE 64
+#endif
+
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_grid(
+    VoxGridParams grid, __global const int4* snapped, uint slab, __global uint* occ,
+    __global const ulong* ranked, __global long* acc, __global uint* material) {
+  const uint tri = get_global_id(0);
+  if (tri >= grid.triangle_count) return;
+  VoxTri t;
+  const uint material_id = vox_fetch_triangle(&t, snapped, tri);
+  vox_derive(&t, &grid);
+  if (!vox_triangle_active(&t) || (int)slab < t.first[2] || (int)slab > t.last[2]) return;
+  VoxWriter w;
+  vox_writer_init(&w, &t, material_id, occ, ranked, acc, material);
+  vox_scan_slab(&t, &grid, (int)slab, t.first[1], t.last[1], &w);
+}

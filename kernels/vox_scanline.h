@@ -1,0 +1,312 @@
+/* vox_scanline.h — the scanline work of one triangle copy, shared by vox_raster.cl (one work item per
+ * copy record: the papers' method) and vox_grid.cl (one launch per slab over every triangle: the "Grid"
+ * baseline), so both produce the same voxels by construction.
+ *   conservative: voxel box (closed) overlaps the closed triangle — the 13-axis separating-axis test,
+ *                 evaluated incrementally along each row in exact 64-bit integers;
+ *   center:       the column centre (i+1/2, j+1/2) lies inside the triangle's projection (top-left tie
+ *                 rule) and the triangle's depth there lies in the slab [k, k+1).
+ * Float clipping of the triangle against the slab and each row only narrows the candidate range (with a
+ * margin far above float error); membership is always decided by the exact integer test.
+ * VOX_PASS 0 sets occupancy bits (one atomic_or per 32 voxels of a row). VOX_PASS 1 runs after the ranks
+ * of set voxels are known and adds the attributes VOX_CHANNELS asks for (bit 1 count, 2 normal sum,
+ * 3 material) at each voxel's rank. Count and normal sum share two 64-bit accumulators per voxel so a write
+ * costs two atomics, not four: acc[2r] += n.x + 2^32 (count in the high half), acc[2r+1] += n.y + n.z*2^32.
+ * Two's complement makes the packed sums exact; vox_finalize.cl unpacks them. */
+#ifndef VOX_SCANLINE_H
+#define VOX_SCANLINE_H
+
+#include "voxr_layout.h"
+#include "vox_triangle.h"
+
+#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
+
+#ifndef VOX_PASS
+#define VOX_PASS 0
+#endif
+#ifndef VOX_CHANNELS
+#define VOX_CHANNELS 0
+#endif
+/* Triangles spanning fewer than this many cells per axis skip the float clipping. */
+#ifndef VOX_SMALL_SPAN
+#define VOX_SMALL_SPAN 3
+#endif
+#define VOX_CLIP_MARGIN 0.0625f
+
+#define VOX_CH_COUNT 2
+#define VOX_CH_NORMAL 4
+#define VOX_CH_MATERIAL 8
+
+/* ---- float clipping: candidate ranges only ---------------------------------------------------------- */
+
+typedef struct VoxPoly {
+  float c[3][8]; /* c[axis][vertex] */
+  int n;
+} VoxPoly;
+
+/* Keeps the part of `in` where sign * (x_axis - bound) >= 0. */
+inline void vox_clip(VoxPoly* out, const VoxPoly* in, int axis, float bound, float sign) {
+  out->n = 0;
+  for (int a = 0; a < in->n; ++a) {
+    const int b = a + 1 == in->n ? 0 : a + 1;
+    const float da = sign * (in->c[axis][a] - bound);
+    const float db = sign * (in->c[axis][b] - bound);
+    if (da >= 0.0f) {
+      for (int q = 0; q < 3; ++q) out->c[q][out->n] = in->c[q][a];
+      ++out->n;
+    }
+    if ((da >= 0.0f) != (db >= 0.0f)) {
+      const float s = da / (da - db);
+      for (int q = 0; q < 3; ++q) out->c[q][out->n] = in->c[q][a] + s * (in->c[q][b] - in->c[q][a]);
+      ++out->n;
+    }
+  }
+}
+
+inline void vox_clip_band(VoxPoly* poly, int axis, float lo, float hi) {
+  VoxPoly tmp;
+  vox_clip(&tmp, poly, axis, lo, 1.0f);
+  vox_clip(poly, &tmp, axis, hi, -1.0f);
+}
+
+inline void vox_poly_range(const VoxPoly* poly, int axis, float* lo, float* hi) {
+  *lo = INFINITY;
+  *hi = -INFINITY;
+  for (int a = 0; a < poly->n; ++a) {
+    *lo = fmin(*lo, poly->c[axis][a]);
+    *hi = fmax(*hi, poly->c[axis][a]);
+  }
+}
+
+/* Cells whose raster sample meets [lo, hi] along an axis (a superset thanks to the margin). */
+inline void vox_cells(float lo, float hi, int* first, int* last) {
+  lo -= VOX_CLIP_MARGIN;
+  hi += VOX_CLIP_MARGIN;
+#if VOXR_MODE == VOXR_MODE_CONSERVATIVE
+  *first = (int)ceil(lo) - 1;
+  *last = (int)floor(hi);
+#else
+  *first = (int)ceil(lo - 0.5f);
+  *last = (int)floor(hi - 0.5f);
+#endif
+}
+
+/* ---- voxel writes -------------------------------------------------------------------------------- */
+
+typedef struct VoxWriter {
+  __global uint* occ;
+  __global const ulong* ranked; /* pass 1: (rank of the word's first set voxel << 32) | occupancy word */
+  __global long* acc;
+  __global uint* material;
+  ulong word;
+  uint mask;
+  int normal[3];
+  uint material_id;
+} VoxWriter;
+
+inline void vox_flush(VoxWriter* w) {
+#if VOX_PASS == 0
+  /* Most surface voxels are set by several copies: a plain read skips the locked write when the bits are
+   * already there (bits are only ever set during this pass, so the race is benign). */
+  if (w->mask && (w->occ[w->word] & w->mask) != w->mask) atomic_or(w->occ + w->word, w->mask);
+  w->mask = 0;
+#endif
+}
+
+inline void vox_emit(VoxWriter* w, ulong linear) {
+  const ulong word = linear >> 5;
+  const uint bit = 1u << (uint)(linear & 31);
+#if VOX_PASS == 0
+  if (word != w->word) {
+    vox_flush(w);
+    w->word = word;
+  }
+  w->mask |= bit;
+#else
+  const ulong ranked = w->ranked[word];
+  const ulong rank = (ranked >> 32) + popcount((uint)ranked & (bit - 1u));
+#if VOX_CHANNELS & (VOX_CH_COUNT | VOX_CH_NORMAL)
+  atom_add(w->acc + 2 * rank, (long)w->normal[0] + (1L << 32));
+#endif
+#if VOX_CHANNELS & VOX_CH_NORMAL
+  atom_add(w->acc + 2 * rank + 1, (long)w->normal[1] + ((long)w->normal[2] << 32));
+#endif
+#if VOX_CHANNELS & VOX_CH_MATERIAL
+  atomic_max(w->material + rank, w->material_id);
+#endif
+#endif
+}
+
+/* The triangle's unit normal in fixed point; float operations in an order the host reproduces. */
+inline void vox_fixed_normal(const VoxTri* t, int* out) {
+  const float f[3] = {convert_float(t->n[0]), convert_float(t->n[1]), convert_float(t->n[2])};
+  const float len2 = (f[0] * f[0] + f[1] * f[1]) + f[2] * f[2];
+  const float scale = len2 > 0.0f ? (float)VOXR_NORMAL_ONE / sqrt(len2) : 0.0f;
+  for (int q = 0; q < 3; ++q) out[q] = (int)rint(f[q] * scale);
+}
+
+/* ---- exact rules --------------------------------------------------------------------------------- */
+
+#if VOXR_MODE == VOXR_MODE_CONSERVATIVE
+/* A separating-axis candidate a: the box whose corner is b (relative to v0) overlaps the triangle along a
+ * iff lo <= a.b <= hi, where the triangle projects to [min(0,t), max(0,t)] and the box to a.b plus
+ * S * [sum of negative a, sum of positive a]. */
+inline void vox_axis_bounds(long t, long ax, long ay, long az, long* lo, long* hi) {
+  *lo = min(0L, t) - VOX_S * (max(ax, 0L) + max(ay, 0L) + max(az, 0L));
+  *hi = max(0L, t) - VOX_S * (min(ax, 0L) + min(ay, 0L) + min(az, 0L));
+}
+#endif
+
+inline void vox_writer_init(VoxWriter* w, const VoxTri* t, uint material_id, __global uint* occ,
+                            __global const ulong* ranked, __global long* acc, __global uint* material) {
+  w->occ = occ;
+  w->ranked = ranked;
+  w->acc = acc;
+  w->material = material;
+  w->word = ~0UL;
+  w->mask = 0;
+  w->material_id = material_id;
+  w->normal[0] = w->normal[1] = w->normal[2] = 0;
+#if VOX_PASS == 1 && (VOX_CHANNELS & VOX_CH_NORMAL)
+  vox_fixed_normal(t, w->normal);
+#endif
+}
+
+/* Rows [row_first, row_last] of slab k of triangle t through writer w: the work of one copy. */
+inline void vox_scan_slab(const VoxTri* t, const VoxGridParams* grid, int k, int row_first, int row_last,
+                          VoxWriter* w) {
+  /* Large triangles: clip to the slab (float) to narrow the rows, and later each row to narrow columns. */
+  const int clip_columns = t->last[0] - t->first[0] >= VOX_SMALL_SPAN;
+  VoxPoly slab;
+  if (clip_columns || t->last[1] - t->first[1] >= VOX_SMALL_SPAN) {
+    slab.n = 3;
+    for (int c = 0; c < 3; ++c)
+      for (int a = 0; a < 3; ++a) slab.c[a][c] = (float)t->v[c][a] / (float)VOXR_SUBVOXEL;
+    vox_clip_band(&slab, 2, (float)k - VOX_CLIP_MARGIN, (float)(k + 1) + VOX_CLIP_MARGIN);
+    if (slab.n == 0) return;
+    float lo, hi;
+    int first, last;
+    vox_poly_range(&slab, 1, &lo, &hi);
+    vox_cells(lo, hi, &first, &last);
+    row_first = max(row_first, first);
+    row_last = min(row_last, last);
+  }
+  if (row_first > row_last) return;
+
+  const long rel_z = (long)k * VOX_S - t->v[0][2];
+
+#if VOXR_MODE == VOXR_MODE_CONSERVATIVE
+  /* The 13 separating axes: the box axes are the loop ranges; edge x X is constant along a row (row_*);
+   * edge x Y, edge x Z and the normal vary linearly with the column (col_*, 7 of them). An edge's own
+   * vertices project to the same value, so the triangle's projection is [min(0,t), max(0,t)] with t the
+   * projection of one vertex relative to v0 (v2 for edge 0, v1 for edges 1 and 2). */
+  long row_ay[3], row_az[3], row_lo[3], row_hi[3];
+  long col_ax[7], col_ay[7], col_az[7], col_lo[7], col_hi[7];
+  const long r1[3] = {t->v[1][0] - t->v[0][0], t->v[1][1] - t->v[0][1], t->v[1][2] - t->v[0][2]};
+  const long r2[3] = {t->v[2][0] - t->v[0][0], t->v[2][1] - t->v[0][1], t->v[2][2] - t->v[0][2]};
+  for (int e = 0; e < 3; ++e) {
+    const int f = e == 2 ? 0 : e + 1;
+    const long dx = t->v[f][0] - t->v[e][0], dy = t->v[f][1] - t->v[e][1], dz = t->v[f][2] - t->v[e][2];
+    const long* r = e == 0 ? r2 : r1;
+    /* edge x X = (0, dz, -dy) */
+    row_ay[e] = dz;
+    row_az[e] = -dy;
+    vox_axis_bounds(dz * r[1] - dy * r[2], 0, dz, -dy, &row_lo[e], &row_hi[e]);
+    /* edge x Y = (-dz, 0, dx) */
+    col_ax[2 * e] = -dz;
+    col_ay[2 * e] = 0;
+    col_az[2 * e] = dx;
+    vox_axis_bounds(dx * r[2] - dz * r[0], -dz, 0, dx, &col_lo[2 * e], &col_hi[2 * e]);
+    /* edge x Z = (dy, -dx, 0) */
+    col_ax[2 * e + 1] = dy;
+    col_ay[2 * e + 1] = -dx;
+    col_az[2 * e + 1] = 0;
+    vox_axis_bounds(dy * r[0] - dx * r[1], dy, -dx, 0, &col_lo[2 * e + 1], &col_hi[2 * e + 1]);
+  }
+  col_ax[6] = t->n[0];
+  col_ay[6] = t->n[1];
+  col_az[6] = t->n[2];
+  vox_axis_bounds(0, t->n[0], t->n[1], t->n[2], &col_lo[6], &col_hi[6]);
+  /* The slab is fixed for the whole record: fold its part of every projection in once. */
+  long row_z[3], col_z[7], col_step[7];
+  for (int e = 0; e < 3; ++e) row_z[e] = row_az[e] * rel_z;
+  for (int q = 0; q < 7; ++q) {
+    col_z[q] = col_az[q] * rel_z;
+    col_step[q] = col_ax[q] * VOX_S;
+  }
+#else
+  /* Projected edges of the triangle, ordered counter-clockwise. */
+  const int o1 = t->n[2] > 0 ? 1 : 2, o2 = t->n[2] > 0 ? 2 : 1;
+  const long px[3] = {t->v[0][0], t->v[o1][0], t->v[o2][0]};
+  const long py[3] = {t->v[0][1], t->v[o1][1], t->v[o2][1]};
+  long edge_dx[3], edge_dy[3], edge_bias[3];
+  for (int e = 0; e < 3; ++e) {
+    const int f = e == 2 ? 0 : e + 1;
+    edge_dx[e] = px[f] - px[e];
+    edge_dy[e] = py[f] - py[e];
+    /* Top-left rule: a centre exactly on an edge belongs to the triangle on the edge's left/top side. */
+    edge_bias[e] = (edge_dy[e] < 0 || (edge_dy[e] == 0 && edge_dx[e] < 0)) ? 0 : 1;
+  }
+  const long sgn = t->n[2] > 0 ? 1 : -1;
+  const long depth_lo = rel_z * t->n[2] * sgn;
+  const long depth_hi = (rel_z + VOX_S) * t->n[2] * sgn;
+#endif
+
+  for (int j = row_first; j <= row_last; ++j) {
+    int col_first = t->first[0], col_last = t->last[0];
+    if (clip_columns) {
+      VoxPoly row = slab;
+#if VOXR_MODE == VOXR_MODE_CONSERVATIVE
+      vox_clip_band(&row, 1, (float)j - VOX_CLIP_MARGIN, (float)(j + 1) + VOX_CLIP_MARGIN);
+#else
+      vox_clip_band(&row, 1, (float)j + 0.5f - VOX_CLIP_MARGIN, (float)j + 0.5f + VOX_CLIP_MARGIN);
+#endif
+      if (row.n == 0) continue;
+      float lo, hi;
+      int first, last;
+      vox_poly_range(&row, 0, &lo, &hi);
+      vox_cells(lo, hi, &first, &last);
+      col_first = max(col_first, first);
+      col_last = min(col_last, last);
+    }
+    if (col_first > col_last) continue;
+    const ulong row_base = ((ulong)k * grid->dims[1] + (ulong)j) * grid->dims[0];
+
+#if VOXR_MODE == VOXR_MODE_CONSERVATIVE
+    const long rel_y = (long)j * VOX_S - t->v[0][1];
+    int row_ok = 1;
+    for (int e = 0; e < 3; ++e) {
+      const long v = row_ay[e] * rel_y + row_z[e];
+      row_ok &= row_lo[e] <= v && v <= row_hi[e];
+    }
+    if (!row_ok) continue;
+    const long rel_x = (long)col_first * VOX_S - t->v[0][0];
+    long value[7];
+    for (int q = 0; q < 7; ++q) value[q] = col_ax[q] * rel_x + col_ay[q] * rel_y + col_z[q];
+    for (int i = col_first; i <= col_last; ++i) {
+      int inside = 1;
+      for (int q = 0; q < 7; ++q) inside &= col_lo[q] <= value[q] && value[q] <= col_hi[q];
+      if (inside) vox_emit(w, row_base + (ulong)i);
+      for (int q = 0; q < 7; ++q) value[q] += col_step[q];
+    }
+#else
+    const long cy = (long)j * VOX_S + VOX_S / 2;
+    const long cx0 = (long)col_first * VOX_S + VOX_S / 2;
+    long edge[3];
+    for (int e = 0; e < 3; ++e) edge[e] = edge_dx[e] * (cy - py[e]) - edge_dy[e] * (cx0 - px[e]);
+    long depth = -sgn * (t->n[0] * (cx0 - t->v[0][0]) + t->n[1] * (cy - t->v[0][1]));
+    const long depth_step = -sgn * t->n[0] * VOX_S;
+    for (int i = col_first; i <= col_last; ++i) {
+      int inside = depth_lo <= depth && depth < depth_hi;
+      for (int e = 0; e < 3; ++e) {
+        inside &= edge[e] >= edge_bias[e];
+        edge[e] -= edge_dy[e] * VOX_S;
+      }
+      depth += depth_step;
+      if (inside) vox_emit(w, row_base + (ulong)i);
+    }
+#endif
+  }
+  vox_flush(w);
+}
+
+#endif
