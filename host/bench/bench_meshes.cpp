@@ -31,6 +31,7 @@ TriangleSoup base_mesh(const std::string& base) {
   if (base == "armadillo") return load_packaged("armadillo.off");
   if (base == "dragon") return load_packaged("ChineseDragon-10kv.off");
   if (base == "elephant") return load_packaged("refined_elephant.off");
+  if (base == "shark") return load_packaged("mech-holes-shark.off");
   fail(
       "unknown benchmark mesh '{}' (torus, sphere, bunny, armadillo, dragon, elephant; append xN to "
       "subdivide)",

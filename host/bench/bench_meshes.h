@@ -1,7 +1,8 @@
 // Named meshes for benchmarks, built the same way on every machine: procedural generators, the
 // Debian-packaged meshes (scripts/fetch-meshes.sh, looked up in $VOXR_MESH_DIR, default data/meshes) and
 // midpoint subdivision for the million-triangle sizes. A name is BASE or BASExN with N = 4^levels:
-// "torus" (800), "bunny" (69 K), "bunnyx16" (1.1 M), "armadillo", "armadillox16", "dragon", "elephant".
+// "torus" (800), "bunny" (69 K), "bunnyx16" (1.1 M), "armadillo" (52 K), "armadillox16" (832 K),
+// "dragon" (20 K), "elephant" (89 K), "shark" (10 K, with holes), "sharkx64" (652 K).
 #pragma once
 
 #include <string>

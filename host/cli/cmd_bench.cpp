@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "bench/bench_meshes.h"
+#include "bench/table1.h"
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
 #include "voxelize/slice_voxelizer.h"
@@ -99,6 +100,52 @@ int run_bench_voxelize(const BenchArgs& args) {
   return 0;
 }
 
+struct Table1Args {
+  std::vector<std::string> models;  // LABEL=MESH or MESH; empty: the papers' six sizes
+  std::vector<uint32_t> resolutions = {128, 256, 512};
+  std::vector<std::string> methods = table1_methods();
+  std::string device;
+  std::string out = "table1";
+  int repeat = 3;
+  int warmup = 1;
+  bool no_accuracy = false;
+};
+
+int run_bench_table1(const Table1Args& args) {
+  ClRuntime cl(args.device);
+  Table1Options options;
+  options.models = table1_default_models();
+  if (!args.models.empty()) {
+    options.models.clear();
+    for (const std::string& m : args.models) {
+      const size_t eq = m.find('=');
+      options.models.push_back(eq == std::string::npos ? Table1Model{m, m}
+                                                       : Table1Model{m.substr(0, eq), m.substr(eq + 1)});
+    }
+  }
+  options.resolutions = args.resolutions;
+  options.methods = args.methods;
+  options.repeat = args.repeat;
+  options.warmup = args.warmup;
+  options.accuracy = !args.no_accuracy;
+  options.progress = [](const std::string& line) {
+    fmt::print("{}\n", line);
+    std::fflush(stdout);
+  };
+  const std::string device = fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name,
+                                         cl.device().driver_version);
+  fmt::print("device: {}\n", device);
+  const std::vector<Table1Row> rows = run_table1(cl, options);
+  for (const auto& [ext, text] :
+       {std::pair{".csv", table1_csv(rows, device)}, std::pair{".md", table1_markdown(rows, device)}}) {
+    std::ofstream out(args.out + ext);
+    out << text;
+    if (!out) fail("{}{}: cannot write", args.out, ext);
+    fmt::print("wrote {}{}\n", args.out, ext);
+  }
+  return 0;
+}
+
 }  // namespace
 
 Command add_bench(CLI::App& app) {
@@ -125,8 +172,28 @@ Command add_bench(CLI::App& app) {
   vox->add_option("--warmup", args->warmup, "untimed runs first")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
-  return {sub, [args, vox] {
+  auto table = std::make_shared<Table1Args>();
+  CLI::App* t1 = sub->add_subcommand(
+      "table1", "The papers' Table 1: every method x model x resolution, time and accuracy");
+  t1->add_option("--models", table->models, "LABEL=MESH or MESH (default: the papers' six triangle counts)")
+      ->delimiter(',');
+  t1->add_option("--res", table->resolutions, "resolutions")
+      ->delimiter(',')
+      ->check(CLI::Range(1u, kMaxGridDim))
+      ->capture_default_str();
+  t1->add_option("--methods", table->methods, "methods")->delimiter(',')->capture_default_str();
+  t1->add_option("--device", table->device, "OpenCL device P:D or name substring");
+  t1->add_option("--out", table->out, "output prefix: PREFIX.csv and PREFIX.md")->capture_default_str();
+  t1->add_option("--repeat", table->repeat, "timed runs per case")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  t1->add_option("--warmup", table->warmup, "untimed runs first")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  t1->add_flag("--no-accuracy", table->no_accuracy, "skip the accuracy measures (time only)");
+  return {sub, [args, vox, table, t1] {
             if (vox->parsed()) return run_bench_voxelize(*args);
+            if (t1->parsed()) return run_bench_table1(*table);
             return 2;
           }};
 }

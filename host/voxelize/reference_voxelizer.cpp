@@ -54,7 +54,7 @@ bool reference_conservative_overlap(const SnappedTriangle& t, int64_t i, int64_t
   return true;
 }
 
-bool reference_center_hit(const SnappedTriangle& t, int64_t i, int64_t j, int64_t k) {
+bool reference_center_crossing(const SnappedTriangle& t, int64_t i, int64_t j, int64_t* k) {
   const i128 nz = t.n[2];
   if (nz == 0) return false;  // edge-on: the projection covers no centre
   const i128 cx = i * S + S / 2, cy = j * S + S / 2;
@@ -68,12 +68,21 @@ bool reference_center_hit(const SnappedTriangle& t, int64_t i, int64_t j, int64_
     const bool top_left = dy < 0 || (dy == 0 && dx < 0);
     if (w < 0 || (w == 0 && !top_left)) return false;
   }
-  // Depth of the plane at the centre, z = v0z + num / nz; inside the slab [k*S, (k+1)*S)?
+  // The plane's depth at the centre is z = v0z + num / nz, so z * nz = v0z * nz + num; the cell is
+  // floor(z / S) = floor(z_times_nz / (nz * S)).
   const i128 num = -(i128(t.n[0]) * (cx - t.v[0][0]) + i128(t.n[1]) * (cy - t.v[0][1]));
-  // Compare z*nz with bounds*nz, flipping for negative nz.
-  const i128 z_times_nz = i128(t.v[0][2]) * nz + num;
-  const i128 lo = i128(k * S) * nz, hi = i128((k + 1) * S) * nz;
-  return nz > 0 ? (lo <= z_times_nz && z_times_nz < hi) : (lo >= z_times_nz && z_times_nz > hi);
+  i128 top = i128(t.v[0][2]) * nz + num, bottom = nz * S;
+  if (bottom < 0) {
+    top = -top;
+    bottom = -bottom;
+  }
+  *k = int64_t(top >= 0 ? top / bottom : -((-top + bottom - 1) / bottom));
+  return true;
+}
+
+bool reference_center_hit(const SnappedTriangle& t, int64_t i, int64_t j, int64_t k) {
+  int64_t cell = 0;
+  return reference_center_crossing(t, i, j, &cell) && cell == k;
 }
 
 VoxelGrid reference_voxelize(const TriangleSoup& soup, const GridSpec& grid, RasterMode mode,

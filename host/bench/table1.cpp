@@ -1,0 +1,174 @@
+#include "bench/table1.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+
+#include "bench/bench_meshes.h"
+#include "core/error.h"
+#include "voxelize/slice_voxelizer.h"
+#include "voxelize/slicemap_voxelizer.h"
+#include "voxelize/surface_accuracy.h"
+
+namespace voxr {
+
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// One timed voxelization with the named method.
+VoxelGrid run_method(ClRuntime& cl, const std::string& method, const TriangleSoup& soup, const GridSpec& grid,
+                     VoxelizeStats* stats) {
+  if (method.rfind("slicemap-", 0) == 0) {
+    SlicemapVoxelizer slicemap(cl);
+    return slicemap.run(
+        soup, grid, method == "slicemap-local" ? SlicemapSlicing::kLocal : SlicemapSlicing::kUniform, stats);
+  }
+  VoxelizeOptions options;
+  if (method == "slice-conservative") {
+    options.mode = RasterMode::kConservative;
+  } else if (method == "slice-center") {
+    options.mode = RasterMode::kCenter;
+  } else if (method == "grid") {
+    options.method = VoxelizeMethod::kGrid;
+  } else {
+    fail("unknown Table 1 method '{}'", method);
+  }
+  SliceVoxelizer voxelizer(cl);
+  return voxelizer.run(soup, grid, options, stats);
+}
+
+}  // namespace
+
+const std::vector<std::string>& table1_methods() {
+  static const std::vector<std::string> methods = {"slice-conservative", "slice-center", "grid",
+                                                   "slicemap-uniform", "slicemap-local"};
+  return methods;
+}
+
+std::vector<Table1Model> table1_default_models() {
+  return {{"Torus", "torus"},    {"~43K", "armadillo"},     {"~97K", "elephant"},
+          {"~655K", "sharkx64"}, {"~871K", "armadillox16"}, {"~1.09M", "bunnyx16"}};
+}
+
+std::vector<Table1Row> run_table1(ClRuntime& cl, const Table1Options& options) {
+  for (const std::string& m : options.methods)
+    if (std::find(table1_methods().begin(), table1_methods().end(), m) == table1_methods().end())
+      fail(
+          "unknown method '{}' (methods: slice-conservative, slice-center, grid, slicemap-uniform, "
+          "slicemap-local)",
+          m);
+  std::vector<Table1Row> rows;
+  for (const Table1Model& model : options.models) {
+    const BenchMesh mesh = make_bench_mesh(model.mesh);
+    for (uint32_t res : options.resolutions) {
+      GridRequest request;
+      request.resolution = res;
+      const GridSpec grid = fit_grid(mesh.soup.bounds(), request);
+      VoxelGrid exact;
+      if (options.accuracy) {
+        SliceVoxelizer voxelizer(cl);
+        exact = voxelizer.run(mesh.soup, grid, VoxelizeOptions{});
+      }
+      for (const std::string& method : options.methods) {
+        std::vector<double> kernels, total;
+        VoxelGrid result;
+        VoxelizeStats stats;
+        for (int r = 0; r < options.warmup + options.repeat; ++r) {
+          result = run_method(cl, method, mesh.soup, grid, &stats);
+          if (r < options.warmup) continue;
+          kernels.push_back(stats.kernels_ms);
+          total.push_back(stats.total_ms());
+        }
+        Table1Row row;
+        row.model = model.label;
+        row.mesh = model.mesh;
+        row.method = method;
+        row.triangles = mesh.soup.triangle_count();
+        row.res = res;
+        row.dims = fmt::format("{}x{}x{}", grid.dims.x, grid.dims.y, grid.dims.z);
+        row.kernels_ms = median(kernels);
+        row.total_ms = median(total);
+        row.voxels = result.voxels_set;
+        if (options.accuracy) {
+          const SurfaceAccuracy a = measure_surface_accuracy(result, exact, mesh.soup);
+          row.exact_voxels = a.exact_voxels;
+          row.false_positives = a.false_positives;
+          row.false_negatives = a.false_negatives;
+          row.crossings = a.crossings;
+          row.tunnels = a.tunnels;
+        }
+        rows.push_back(row);
+        if (options.progress)
+          options.progress(
+              fmt::format("{:<8} {:>9} {:>5} {:<20} kernels {:>10.2f} ms  total {:>10.2f} ms  FN {:>9}  "
+                          "tunnels {:>8}",
+                          row.model, row.triangles, row.res, row.method, row.kernels_ms, row.total_ms,
+                          row.false_negatives, row.tunnels));
+      }
+    }
+  }
+  return rows;
+}
+
+std::string table1_csv(const std::vector<Table1Row>& rows, const std::string& device) {
+  std::string csv =
+      "device,model,mesh,triangles,res,dims,method,kernels_ms,total_ms,voxels,exact_voxels,false_positives,"
+      "false_negatives,crossings,tunnels\n";
+  for (const Table1Row& r : rows)
+    csv += fmt::format("\"{}\",{},{},{},{},{},{},{:.4f},{:.4f},{},{},{},{},{},{}\n", device, r.model, r.mesh,
+                       r.triangles, r.res, r.dims, r.method, r.kernels_ms, r.total_ms, r.voxels,
+                       r.exact_voxels, r.false_positives, r.false_negatives, r.crossings, r.tunnels);
+  return csv;
+}
+
+std::string table1_markdown(const std::vector<Table1Row>& rows, const std::string& device) {
+  std::vector<std::string> models, methods;
+  std::vector<uint32_t> resolutions;
+  std::map<std::string, uint64_t> triangles;
+  std::map<std::tuple<std::string, uint32_t, std::string>, const Table1Row*> cell;
+  auto add_unique = [](auto& list, const auto& value) {
+    if (std::find(list.begin(), list.end(), value) == list.end()) list.push_back(value);
+  };
+  for (const Table1Row& r : rows) {
+    add_unique(models, r.model);
+    add_unique(methods, r.method);
+    add_unique(resolutions, r.res);
+    triangles[r.model] = r.triangles;
+    cell[{r.model, r.res, r.method}] = &r;
+  }
+  std::string md = fmt::format(
+      "Kernel time in ms (median) on {}; in brackets: voxels missed against the exact triangle/box set, then "
+      "tunnels (axis rays through the surface that meet no voxel).\n",
+      device);
+  for (uint32_t res : resolutions) {
+    md += fmt::format("\n### {}³ (longest axis)\n\n| model | triangles |", res);
+    std::string rule = "|---|---:|";
+    for (const std::string& m : methods) {
+      md += fmt::format(" {} |", m);
+      rule += "---:|";
+    }
+    md += "\n" + rule + "\n";
+    for (const std::string& model : models) {
+      md += fmt::format("| {} | {} |", model, triangles[model]);
+      for (const std::string& m : methods) {
+        const auto it = cell.find({model, res, m});
+        if (it == cell.end()) {
+          md += " |";
+          continue;
+        }
+        const Table1Row& r = *it->second;
+        md += fmt::format(" {:.1f} [{}, {}] |", r.kernels_ms, r.false_negatives, r.tunnels);
+      }
+      md += "\n";
+    }
+  }
+  return md;
+}
+
+}  // namespace voxr

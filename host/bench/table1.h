@@ -1,0 +1,51 @@
+// The papers' Table 1, extended: every voxelization method over meshes with the papers' triangle counts and
+// several resolutions, each case timed (medians after a warm-up, from profiling events) and measured for
+// accuracy against the exact triangle/box set (host/voxelize/surface_accuracy.h).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cl/cl_runtime.h"
+
+namespace voxr {
+
+struct Table1Model {
+  std::string label;  // as in the papers' table: "Torus", "~43K", ...
+  std::string mesh;   // bench_meshes name
+};
+
+struct Table1Options {
+  std::vector<Table1Model> models;
+  std::vector<uint32_t> resolutions = {128, 256, 512};
+  std::vector<std::string> methods;  // subset of table1_methods()
+  int repeat = 3;
+  int warmup = 1;
+  bool accuracy = true;
+  std::function<void(const std::string&)> progress;  // one line per finished case
+};
+
+struct Table1Row {
+  std::string model, mesh, method;
+  uint64_t triangles = 0;
+  uint32_t res = 0;
+  std::string dims;
+  double kernels_ms = 0.0, total_ms = 0.0;  // medians; total = upload + kernels + readback
+  uint64_t voxels = 0;
+  uint64_t exact_voxels = 0, false_positives = 0, false_negatives = 0, crossings = 0, tunnels = 0;
+};
+
+// "slice-conservative", "slice-center", "grid", "slicemap-uniform", "slicemap-local".
+const std::vector<std::string>& table1_methods();
+// Torus 800, ~43K (armadillo), ~97K (elephant), ~655K (shark x64), ~871K (armadillo x16), ~1.09M (bunny x16).
+std::vector<Table1Model> table1_default_models();
+
+std::vector<Table1Row> run_table1(ClRuntime& cl, const Table1Options& options);
+
+std::string table1_csv(const std::vector<Table1Row>& rows, const std::string& device);
+// Shaped like the papers' table: one line per model, one column per resolution x method (ms).
+std::string table1_markdown(const std::vector<Table1Row>& rows, const std::string& device);
+
+}  // namespace voxr
