@@ -22,8 +22,10 @@ double median(std::vector<double> v) {
 }
 
 // One timed voxelization with the named method.
-VoxelGrid run_method(ClRuntime& cl, const std::string& method, const TriangleSoup& soup, const GridSpec& grid,
-                     VoxelizeStats* stats) {
+VoxelGrid run_method(ClRuntime& cl, const Table1Options& table, const std::string& method,
+                     const TriangleSoup& soup, const GridSpec& grid, VoxelizeStats* stats) {
+  if (const auto peer = table.peers.find(method); peer != table.peers.end())
+    return peer->second(soup, grid, stats);
   if (method.rfind("slicemap-", 0) == 0) {
     SlicemapVoxelizer slicemap(cl);
     return slicemap.run(
@@ -58,7 +60,8 @@ std::vector<Table1Model> table1_default_models() {
 
 std::vector<Table1Row> run_table1(ClRuntime& cl, const Table1Options& options) {
   for (const std::string& m : options.methods)
-    if (std::find(table1_methods().begin(), table1_methods().end(), m) == table1_methods().end())
+    if (std::find(table1_methods().begin(), table1_methods().end(), m) == table1_methods().end() &&
+        !options.peers.count(m))
       fail(
           "unknown method '{}' (methods: slice-conservative, slice-center, grid, slicemap-uniform, "
           "slicemap-local)",
@@ -80,7 +83,7 @@ std::vector<Table1Row> run_table1(ClRuntime& cl, const Table1Options& options) {
         VoxelGrid result;
         VoxelizeStats stats;
         for (int r = 0; r < options.warmup + options.repeat; ++r) {
-          result = run_method(cl, method, mesh.soup, grid, &stats);
+          result = run_method(cl, options, method, mesh.soup, grid, &stats);
           if (r < options.warmup) continue;
           kernels.push_back(stats.kernels_ms);
           total.push_back(stats.total_ms());

@@ -5,10 +5,14 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "cl/cl_runtime.h"
+#include "core/grid_spec.h"
+#include "core/triangle_soup.h"
+#include "voxelize/slice_voxelizer.h"
 
 namespace voxr {
 
@@ -17,10 +21,14 @@ struct Table1Model {
   std::string mesh;   // bench_meshes name
 };
 
+// A method from outside voxr_core (a CPU peer such as OpenVDB): voxelizes and fills stats->kernels_ms.
+using Table1Peer = std::function<VoxelGrid(const TriangleSoup&, const GridSpec&, VoxelizeStats*)>;
+
 struct Table1Options {
   std::vector<Table1Model> models;
   std::vector<uint32_t> resolutions = {128, 256, 512};
-  std::vector<std::string> methods;  // subset of table1_methods()
+  std::vector<std::string> methods;  // table1_methods() or names in `peers`
+  std::map<std::string, Table1Peer> peers;
   int repeat = 3;
   int warmup = 1;
   bool accuracy = true;

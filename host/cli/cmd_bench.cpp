@@ -8,6 +8,9 @@
 
 #include "bench/bench_meshes.h"
 #include "bench/table1.h"
+#ifdef VOXR_WITH_OPENVDB
+#include "peers/openvdb_peer.h"
+#endif
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
 #include "voxelize/slice_voxelizer.h"
@@ -100,10 +103,19 @@ int run_bench_voxelize(const BenchArgs& args) {
   return 0;
 }
 
+// The core methods plus the CPU peers this build has.
+std::vector<std::string> default_table1_methods() {
+  std::vector<std::string> methods = table1_methods();
+#ifdef VOXR_WITH_OPENVDB
+  methods.push_back("openvdb");
+#endif
+  return methods;
+}
+
 struct Table1Args {
   std::vector<std::string> models;  // LABEL=MESH or MESH; empty: the papers' six sizes
   std::vector<uint32_t> resolutions = {128, 256, 512};
-  std::vector<std::string> methods = table1_methods();
+  std::vector<std::string> methods = default_table1_methods();
   std::string device;
   std::string out = "table1";
   int repeat = 3;
@@ -125,6 +137,9 @@ int run_bench_table1(const Table1Args& args) {
   }
   options.resolutions = args.resolutions;
   options.methods = args.methods;
+#ifdef VOXR_WITH_OPENVDB
+  options.peers["openvdb"] = openvdb_mesh_to_volume;
+#endif
   options.repeat = args.repeat;
   options.warmup = args.warmup;
   options.accuracy = !args.no_accuracy;
