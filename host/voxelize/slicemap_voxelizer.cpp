@@ -1,0 +1,223 @@
+#include "voxelize/slicemap_voxelizer.h"
+
+#include <algorithm>
+#include <bit>
+#include <chrono>
+
+#include "cl/scan.h"
+#include "voxelize/triangle_splitter.h"
+#include "voxr_layout.h"
+
+namespace voxr {
+
+namespace {
+
+constexpr size_t kGroup = 256;
+// Tile of column centres one raster work item covers (kernels/slicemap_raster.cl); setup and raster must
+// agree, so the host passes both.
+constexpr uint32_t kTileRows = 8;
+constexpr uint32_t kTileCols = 8;
+
+std::map<std::string, double> profile_since(const Profiler& profiler,
+                                            const std::map<std::string, Profiler::Stat>& before) {
+  std::map<std::string, double> out;
+  for (const auto& [name, s] : profiler.stats()) {
+    const auto it = before.find(name);
+    const double prev = it == before.end() ? 0.0 : it->second.total_ms;
+    if (s.total_ms - prev > 0.0) out[name] = s.total_ms - prev;
+  }
+  return out;
+}
+
+bool is_prefixed(const std::string& name, const char* prefix) {
+  return name.rfind(prefix, 0) == 0;
+}
+
+}  // namespace
+
+const char* slicemap_slicing_name(SlicemapSlicing slicing) {
+  return slicing == SlicemapSlicing::kLocal ? "local" : "uniform";
+}
+
+uint32_t Slicemap::bits_set(uint32_t i, uint32_t j) const {
+  uint32_t n = 0;
+  const uint64_t base = column(i, j) * words_per_column;
+  for (uint32_t w = 0; w < words_per_column; ++w) n += std::popcount(bits[base + w]);
+  return n;
+}
+
+uint64_t Slicemap::bits_set() const {
+  uint64_t n = 0;
+  for (uint32_t w : bits) n += std::popcount(w);
+  return n;
+}
+
+cl::Buffer SlicemapVoxelizer::scratch(const std::string& what, uint64_t bytes) {
+  bytes = std::max<uint64_t>(bytes, 4);
+  Scratch& slot = scratch_[what];
+  if (slot.bytes < bytes) {
+    slot.buffer = cl::Buffer();
+    slot.buffer = cl_.buffer(bytes, what);
+    slot.bytes = bytes;
+  }
+  return slot.buffer;
+}
+
+VoxelGrid SlicemapVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, SlicemapSlicing slicing,
+                                 VoxelizeStats* stats, Slicemap* slicemap, const SlicemapOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  uint64_t split = 0;
+  const std::optional<TriangleSoup> pieces = split_oversized_triangles(soup, grid, &split);
+  cl_.finish();
+  const auto before = cl_.profiler().stats();
+  const DeviceMesh mesh(cl_, pieces ? *pieces : soup);
+  cl_.finish("uploading the mesh");
+  double upload_ms = 0.0;
+  for (const auto& [name, ms] : profile_since(cl_.profiler(), before)) upload_ms += ms;
+  VoxelGrid result = run(mesh, grid, slicing, stats, slicemap, options);
+  if (stats) {
+    stats->triangles_split = split;
+    stats->upload_ms = upload_ms;
+    stats->wall_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  return result;
+}
+
+VoxelGrid SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, SlicemapSlicing slicing,
+                                 VoxelizeStats* stats, Slicemap* slicemap, const SlicemapOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  cl_.finish();
+  const auto before = cl_.profiler().stats();
+  const bool local = slicing == SlicemapSlicing::kLocal;
+  // zf < dims.z * S must fit the depth codes (uint) of the depth pass.
+  VOXR_CHECK_LT(uint64_t(grid.dims.z) * VOXR_SUBVOXEL, uint64_t(0xffffffffu));
+
+  VoxGridParams params{};
+  const std::array<float, 12> m = grid.world_to_grid();
+  std::copy(m.begin(), m.end(), params.world_to_grid);
+  for (int a = 0; a < 3; ++a) params.dims[a] = grid.dims[a];
+  params.triangle_count = mesh.triangle_count();
+
+  const uint64_t tris = mesh.triangle_count();
+  const uint64_t columns = uint64_t(grid.dims.x) * grid.dims.y;
+  const uint32_t words_per_column = (grid.dims.z + 31) / 32;
+  const uint64_t slicemap_words = columns * words_per_column;
+  const uint64_t occ_words = (grid.voxel_count() + 31) / 32;
+  const Defines common = {{"WG_SIZE", std::to_string(kGroup)},
+                          {"SLICEMAP_TILE_ROWS", std::to_string(kTileRows)},
+                          {"SLICEMAP_TILE_COLS", std::to_string(kTileCols)},
+                          {"SLICEMAP_LOCAL", local ? "1" : "0"}};
+  auto with = [&](const char* key, const char* value) {
+    Defines d = common;
+    d.push_back({key, value});
+    return d;
+  };
+  uint64_t device_bytes = 0;
+  auto alloc = [&](uint64_t bytes, const std::string& what) {
+    device_bytes += bytes;
+    return scratch(what, bytes);
+  };
+
+  cl::Buffer bits = alloc(slicemap_words * 4, "the slicemap");
+  cl_.fill_zero(bits, slicemap_words * 4, "clear");
+  cl::Buffer depth_range =
+      local ? alloc(columns * 8, "the column depth ranges") : alloc(4, "unused depth ranges");
+  if (local) cl_.fill_zero(depth_range, columns * 8, "clear");
+  cl::Buffer snapped = alloc(tris * 48, "snapped triangles");
+  cl::Buffer counts = alloc(tris * 4, "tile counts");
+  cl::Buffer info = alloc(tris * 8, "tile info");
+  cl::Buffer offsets = alloc(tris * 8, "tile offsets");
+  cl::Buffer too_large = alloc(4, "split check");
+  cl_.fill_zero(too_large, 4, "clear");
+  cl::Kernel setup = cl_.kernel("slicemap_setup.cl", "slicemap_setup", common);
+  cl_.launch("setup", setup, tris, kGroup, params, mesh.positions(), mesh.triangles(), snapped, counts, info,
+             too_large);
+  const uint64_t records = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, tris, "scan");
+  cl_uint oversized = 0;
+  cl_.download(too_large, &oversized, 4, "readback split check");
+  if (oversized)
+    throw InternalError(fmt::format("{} triangles exceed {} voxels; split_oversized_triangles must run first",
+                                    oversized, VOXR_MAX_TRIANGLE_EXTENT));
+
+  // Records per batch: within the budget and within the raster kernel's 32-bit record count.
+  const uint64_t batch =
+      std::max<uint64_t>(1, std::min({records, options.record_budget_bytes / 8, uint64_t(1) << 30}));
+  const uint64_t batches = records == 0 ? 0 : (records + batch - 1) / batch;
+  cl::Buffer record_buffer = alloc(batch * 8, "raster records");
+  cl::Kernel expand = cl_.kernel("slicemap_expand.cl", "slicemap_expand", common);
+  bool expanded = false;
+  auto raster_all = [&](const char* name, cl::Kernel& raster) {
+    for (uint64_t b = 0; b < batches; ++b) {
+      const uint64_t begin = b * batch, end = std::min(records, begin + batch);
+      if (batches > 1 || !expanded)
+        cl_.launch("expand", expand, tris, kGroup, cl_uint(tris), counts, offsets, info, cl_ulong(begin),
+                   cl_ulong(end), record_buffer);
+      expanded = true;
+      cl_.launch(name, raster, end - begin, kGroup, params, snapped, record_buffer, cl_uint(end - begin),
+                 depth_range, bits);
+    }
+  };
+  if (local) {
+    cl::Kernel depth = cl_.kernel("slicemap_raster.cl", "slicemap_raster", with("SLICEMAP_PASS", "0"));
+    raster_all("depth", depth);
+  }
+  cl::Kernel raster = cl_.kernel("slicemap_raster.cl", "slicemap_raster", with("SLICEMAP_PASS", "1"));
+  raster_all("raster", raster);
+
+  cl::Buffer occ = alloc(occ_words * 4, "the occupancy bits");
+  cl_.fill_zero(occ, occ_words * 4, "clear");
+  cl::Kernel voxels = cl_.kernel("slicemap_voxels.cl", "slicemap_voxels", common);
+  cl_.launch("voxels", voxels, slicemap_words, kGroup, params, bits, depth_range, occ);
+
+  VoxelGrid out;
+  out.spec = grid;
+  out.occ.resize(occ_words);
+  cl_.download(occ, out.occ.data(), occ_words * 4, "readback occupancy");
+  if (slicemap) {
+    *slicemap = Slicemap{};
+    slicemap->spec = grid;
+    slicemap->slicing = slicing;
+    slicemap->words_per_column = words_per_column;
+    slicemap->bits.resize(slicemap_words);
+    cl_.download(bits, slicemap->bits.data(), slicemap_words * 4, "readback slicemap");
+    if (local) {
+      std::vector<uint32_t> codes(columns * 2);
+      cl_.download(depth_range, codes.data(), columns * 8, "readback depth ranges");
+      const uint32_t z_end = grid.dims.z * uint32_t(VOXR_SUBVOXEL);
+      slicemap->near.assign(columns, Slicemap::kEmptyNear);
+      slicemap->far.assign(columns, 0);
+      for (uint64_t c = 0; c < columns; ++c) {
+        if (codes[2 * c + 1] == 0) continue;
+        slicemap->near[c] = z_end - codes[2 * c];
+        slicemap->far[c] = codes[2 * c + 1] - 1;
+      }
+    }
+  }
+  cl_.finish("voxelizing with the slicemap");
+  for (uint32_t w : out.occ) out.voxels_set += std::popcount(w);
+
+  if (stats) {
+    *stats = VoxelizeStats{};
+    stats->triangles = tris;
+    stats->copies = records;
+    stats->batches = batches;
+    stats->voxels_set = out.voxels_set;
+    stats->device_bytes = device_bytes;
+    for (const auto& [name, ms] : profile_since(cl_.profiler(), before)) {
+      if (is_prefixed(name, "upload")) {
+        stats->upload_ms += ms;
+      } else if (is_prefixed(name, "readback")) {
+        stats->readback_ms += ms;
+      } else {
+        stats->kernels_ms += ms;
+        stats->stage_ms[name] += ms;
+      }
+    }
+    stats->wall_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  return out;
+}
+
+}  // namespace voxr

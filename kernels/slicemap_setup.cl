@@ -1,0 +1,50 @@
+/* slicemap_setup.cl — slicemap (Eisemann & Decoret 2006), stage 1 of 4: per triangle, snap to the grid,
+ * find the column centres of its projected bounding box and count its raster work items, one per tile of
+ * SLICEMAP_TILE_ROWS x SLICEMAP_TILE_COLS column centres (a triangle covering thousands of columns becomes
+ * many work items, never one long loop).
+ * in:  positions (float4), triangles (uint4: indices, material)
+ * out: snapped[3t..3t+2] (fixed-point vertices, the layout vox_setup.cl stores), tile_counts[t],
+ *      tile_info[t] = (row tiles, column tiles); 0 tiles when the triangle covers no column centre of the
+ *      grid (outside it, or edge-on to the slicing axis); too_large counts triangles the host should have
+ *      split (must stay 0).
+ * shape: one work item per triangle. */
+#include "voxr_layout.h"
+
+/* Column centres and half-open depth slabs: the centre rule of vox_triangle.h. */
+#define VOXR_MODE VOXR_MODE_CENTER
+#include "vox_triangle.h"
+
+#ifndef WG_SIZE
+#define WG_SIZE 256
+#endif
+#ifndef SLICEMAP_TILE_ROWS
+#define SLICEMAP_TILE_ROWS 8
+#endif
+#ifndef SLICEMAP_TILE_COLS
+#define SLICEMAP_TILE_COLS 8
+#endif
+
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void slicemap_setup(
+    VoxGridParams grid, __global const float4* positions, __global const uint4* triangles,
+    __global int4* snapped, __global uint* tile_counts, __global uint2* tile_info, __global uint* too_large) {
+  const uint t = get_global_id(0);
+  if (t >= grid.triangle_count) return;
+  const uint4 indices = triangles[t];
+  VoxTri tri;
+  vox_snap_triangle(&tri, &grid, positions, indices);
+  vox_derive(&tri, &grid);
+  vox_store_triangle(&tri, indices.w, snapped, t);
+  uint count = 0;
+  uint2 info = (uint2)(0, 0);
+  if (vox_triangle_active(&tri)) {
+    if (vox_triangle_too_large(&tri)) {
+      atomic_inc(too_large);
+    } else {
+      info.x = (uint)(tri.last[1] - tri.first[1]) / SLICEMAP_TILE_ROWS + 1;
+      info.y = (uint)(tri.last[0] - tri.first[0]) / SLICEMAP_TILE_COLS + 1;
+      count = info.x * info.y;
+    }
+  }
+  tile_counts[t] = count;
+  tile_info[t] = info;
+}
