@@ -43,6 +43,17 @@ std::string nrrd_header(const GridSpec& spec, const char* type, bool vector, con
   return h;
 }
 
+// Bits as uint8 0/1, a bounded chunk at a time.
+void write_dense_bits(OutputFile& file, const std::vector<uint32_t>& bits, uint64_t n) {
+  constexpr uint64_t kChunk = uint64_t(1) << 20;
+  std::vector<uint8_t> buffer(size_t(std::min(n, kChunk)));
+  for (uint64_t begin = 0; begin < n; begin += kChunk) {
+    const uint64_t end = std::min(n, begin + kChunk);
+    expand_bits(bits, begin, end, buffer.data());
+    file.write(buffer.data(), size_t(end - begin));
+  }
+}
+
 }  // namespace
 
 fs::path nrrd_channel_path(const fs::path& out, Channel channel) {
@@ -84,6 +95,13 @@ std::vector<fs::path> write_nrrd(const VoxelGrid& grid, const fs::path& out) {
     files.push_back(std::make_unique<OutputFile>(nrrd_channel_path(out, Channel::kMaterial)));
     files.back()->write(nrrd_header(spec, "uint32", false, "voxr material"));
     write_dense<uint32_t>(*files.back(), grid, 1, [&](uint32_t* v, uint64_t r) { *v = grid.material[r]; });
+    files.back()->close();
+  }
+  if (grid.channels.has(Channel::kInside)) {
+    VOXR_CHECK_EQ(grid.inside.size(), grid.occ.size());
+    files.push_back(std::make_unique<OutputFile>(nrrd_channel_path(out, Channel::kInside)));
+    files.back()->write(nrrd_header(spec, "uint8", false, "voxr inside"));
+    write_dense_bits(*files.back(), grid.inside, spec.voxel_count());
     files.back()->close();
   }
 

@@ -37,6 +37,10 @@ fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
   if (grid.channels.has(Channel::kNormal)) arrays.push_back({Channel::kNormal, "normal", "Float32", 3, 4});
   if (grid.channels.has(Channel::kMaterial))
     arrays.push_back({Channel::kMaterial, "material", "UInt32", 1, 4});
+  if (grid.channels.has(Channel::kInside)) {
+    VOXR_CHECK_EQ(grid.inside.size(), grid.occ.size());
+    arrays.push_back({Channel::kInside, "inside", "UInt8", 1, 1});
+  }
 
   const glm::vec3 origin = spec.voxel_center_world(0, 0, 0);
   const std::string extent = fmt::format("0 {} 0 {} 0 {}", spec.dims.x - 1, spec.dims.y - 1, spec.dims.z - 1);
@@ -90,6 +94,16 @@ fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
       case Channel::kMaterial:
         write_dense<uint32_t>(file, grid, 1, [&](uint32_t* v, uint64_t r) { *v = grid.material[r]; });
         break;
+      case Channel::kInside: {
+        constexpr uint64_t kChunk = uint64_t(1) << 20;
+        std::vector<uint8_t> buffer(size_t(std::min(n, kChunk)));
+        for (uint64_t begin = 0; begin < n; begin += kChunk) {
+          const uint64_t end = std::min(n, begin + kChunk);
+          expand_bits(grid.inside, begin, end, buffer.data());
+          file.write(buffer.data(), size_t(end - begin));
+        }
+        break;
+      }
     }
   }
   file.write("\n  </AppendedData>\n</VTKFile>\n");

@@ -201,6 +201,7 @@ VoxelGrid SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, S
     *stats = VoxelizeStats{};
     stats->triangles = tris;
     stats->copies = records;
+    stats->work_items = records;
     stats->batches = batches;
     stats->voxels_set = out.voxels_set;
     stats->device_bytes = device_bytes;

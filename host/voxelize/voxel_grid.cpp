@@ -5,7 +5,8 @@
 namespace voxr {
 
 namespace {
-constexpr Channel kAllChannels[] = {Channel::kOcc, Channel::kCount, Channel::kNormal, Channel::kMaterial};
+constexpr Channel kAllChannels[] = {Channel::kOcc, Channel::kCount, Channel::kNormal, Channel::kMaterial,
+                                     Channel::kInside};
 }
 
 const char* channel_name(Channel c) {
@@ -14,6 +15,7 @@ const char* channel_name(Channel c) {
     case Channel::kCount: return "count";
     case Channel::kNormal: return "normal";
     case Channel::kMaterial: return "material";
+    case Channel::kInside: return "inside";
   }
   return "?";
 }
@@ -29,7 +31,7 @@ ChannelSet ChannelSet::parse(std::string_view list) {
         set.add(c);
         known = true;
       }
-    if (!known) fail("unknown channel '{}' (channels: occ, count, normal, material)", name);
+    if (!known) fail("unknown channel '{}' (channels: occ, count, normal, material, inside)", name);
     list = comma == std::string_view::npos ? std::string_view() : list.substr(comma + 1);
   }
   return set;
@@ -40,6 +42,10 @@ std::string ChannelSet::to_string() const {
   for (Channel c : kAllChannels)
     if (has(c)) s += (s.empty() ? "" : ",") + std::string(channel_name(c));
   return s;
+}
+
+void expand_bits(const std::vector<uint32_t>& bits, uint64_t begin, uint64_t end, uint8_t* out) {
+  for (uint64_t l = begin; l < end; ++l) *out++ = uint8_t((bits[l >> 5] >> (l & 31)) & 1u);
 }
 
 }  // namespace voxr

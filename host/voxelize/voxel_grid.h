@@ -14,14 +14,21 @@
 
 namespace voxr {
 
-enum class Channel : uint32_t { kOcc = 1u << 0, kCount = 1u << 1, kNormal = 1u << 2, kMaterial = 1u << 3 };
+enum class Channel : uint32_t {
+  kOcc = 1u << 0,
+  kCount = 1u << 1,
+  kNormal = 1u << 2,
+  kMaterial = 1u << 3,
+  kInside = 1u << 4,  // dense interior bits (VoxelGrid::inside), filled by SolidVoxelizer
+};
 
 struct ChannelSet {
   uint32_t bits = uint32_t(Channel::kOcc);
   bool has(Channel c) const { return (bits & uint32_t(c)) != 0; }
   void add(Channel c) { bits |= uint32_t(c); }
-  bool attributes() const { return (bits & ~uint32_t(Channel::kOcc)) != 0; }
-  // "occ,count,normal,material" (any subset; occ is always present). Throws voxr::Error naming the
+  // Whether a sparse per-set-voxel channel (count, normal, material) is requested; inside is dense.
+  bool attributes() const { return (bits & ~uint32_t(Channel::kOcc) & ~uint32_t(Channel::kInside)) != 0; }
+  // "occ,count,normal,material,inside" (any subset; occ is always present). Throws voxr::Error naming the
   // unknown channel.
   static ChannelSet parse(std::string_view list);
   std::string to_string() const;
@@ -41,8 +48,14 @@ struct VoxelGrid {
   std::vector<glm::vec3> normal;      // normalized normal_sum (zero where the sum cancels)
   std::vector<uint32_t> material;     // largest material id among the triangles that wrote the voxel
 
+  // Dense interior bits, laid out like occ, when channels has kInside (else empty): voxels whose centre a
+  // solid mode judges inside (host/voxelize/solid_voxelizer.h).
+  std::vector<uint32_t> inside;
+  uint64_t inside_voxels = 0;
+
   bool occupied(uint64_t linear) const { return (occ[linear >> 5] >> (linear & 31)) & 1u; }
   bool occupied(uint32_t i, uint32_t j, uint32_t k) const { return occupied(spec.linear_index(i, j, k)); }
+  bool is_inside(uint64_t linear) const { return (inside[linear >> 5] >> (linear & 31)) & 1u; }
 
   // Calls fn(linear_index, rank) for every set voxel in increasing linear order; rank indexes the sparse
   // channels.
@@ -59,5 +72,8 @@ struct VoxelGrid {
     }
   }
 };
+
+// Bits [begin, end) of a dense bit array (occ or inside layout) as 0/1 bytes in out[0 .. end - begin).
+void expand_bits(const std::vector<uint32_t>& bits, uint64_t begin, uint64_t end, uint8_t* out);
 
 }  // namespace voxr
