@@ -108,3 +108,21 @@ TEST(Cli, BadChannelModeAndExtension) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Cli, MethodsAndTheirFlags) {
+  const fs::path mesh = write_file("tetra5.obj", kTetra);
+  for (const char* method : {"--method slice --mode center", "--method grid", "--method slicemap",
+                             "--method slicemap --slicing local"}) {
+    const Result r = run("voxelize " + mesh.string() + " --res 24 -q " + method);
+    EXPECT_EQ(r.code, 0) << method << ": " << r.err;
+  }
+  expect_one_line_error(run("voxelize " + mesh.string() + " --method octree"), "octree");
+  expect_one_line_error(run("voxelize " + mesh.string() + " --method slicemap --mode conservative"),
+                        "--mode");
+  expect_one_line_error(run("voxelize " + mesh.string() + " --slicing local"), "--slicing");
+  expect_one_line_error(run("voxelize " + mesh.string() + " --method slicemap --channels occ,count"), "occ");
+}
+
+}  // namespace

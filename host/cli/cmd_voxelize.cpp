@@ -1,19 +1,20 @@
 // voxr voxelize INPUT -o OUT: mesh or scene -> voxel grid with the slice voxelizer, written by extension,
 // with a summary (and optional JSON report) of counts, memory and per-stage times.
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <fstream>
 
+#include "cl/cl_runtime.h"
 #include "cli/commands.h"
 #include "cli/parse_args.h"
-#include "cl/cl_runtime.h"
 #include "core/default_scene.h"
 #include "core/scene.h"
 #include "io/volume_writer.h"
 #include "voxelize/slice_voxelizer.h"
+#include "voxelize/slicemap_voxelizer.h"
 
 namespace voxr::cli {
 
@@ -24,7 +25,9 @@ struct VoxelizeArgs {
   std::string output;
   uint32_t res = 0;
   std::string dims, bounds;
-  std::string mode = "conservative";
+  std::string method = "slice";
+  std::string mode;     // empty: conservative (slice, grid)
+  std::string slicing;  // empty: uniform (slicemap)
   std::string channels = "occ";
   std::string device;
   std::string report;
@@ -41,7 +44,8 @@ nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const 
       {"input", args.input.empty() ? "default scene" : args.input},
       {"device", cl.device().label()},
       {"driver", cl.device().driver_version},
-      {"mode", raster_mode_name(options.mode)},
+      {"method", args.method},
+      {"mode", args.method == "slicemap" ? "center" : raster_mode_name(options.mode)},
       {"channels", options.channels.to_string()},
       {"triangles", stats.triangles},
       {"triangles_split", stats.triangles_split},
@@ -79,17 +83,29 @@ int run_voxelize(const VoxelizeArgs& args) {
   const GridSpec grid = fit_grid(soup.bounds(), request);
 
   VoxelizeOptions options;
-  options.mode = parse_raster_mode(args.mode);
+  const bool slicemap = args.method == "slicemap";
+  if (args.method == "grid") {
+    options.method = VoxelizeMethod::kGrid;
+  } else if (!slicemap && args.method != "slice") {
+    fail("unknown --method '{}' (methods: slice, grid, slicemap)", args.method);
+  }
+  if (slicemap && !args.mode.empty())
+    fail("--mode does not apply to --method slicemap (it samples column centres)");
+  if (!slicemap && !args.slicing.empty()) fail("--slicing applies to --method slicemap only");
+  const SlicemapSlicing slicing = parse_slicemap_slicing(args.slicing.empty() ? "uniform" : args.slicing);
+  options.mode = parse_raster_mode(args.mode.empty() ? "conservative" : args.mode);
   options.channels = ChannelSet::parse(args.channels);
+  if (slicemap && options.channels.attributes())
+    fail("--method slicemap is binary: it produces the occ channel only (got --channels {})", args.channels);
   options.rows_per_copy = args.rows_per_copy;
   const bool tty = isatty(fileno(stderr)) && !args.quiet;
   if (tty)
     options.progress = [](const std::string& stage) { fmt::print(stderr, "\rvoxelizing: {:<12}", stage); };
 
   ClRuntime cl(args.device);
-  SliceVoxelizer voxelizer(cl);
   VoxelizeStats stats;
-  const VoxelGrid result = voxelizer.run(soup, grid, options, &stats);
+  const VoxelGrid result = slicemap ? SlicemapVoxelizer(cl).run(soup, grid, slicing, &stats)
+                                    : SliceVoxelizer(cl).run(soup, grid, options, &stats);
   if (tty) fmt::print(stderr, "\r{:<32}\r", "");
 
   std::vector<std::filesystem::path> written;
@@ -107,7 +123,8 @@ int run_voxelize(const VoxelizeArgs& args) {
   if (!args.quiet) {
     fmt::print("input      {}\n", scene.source);
     fmt::print("device     {}\n", cl.device().label());
-    fmt::print("triangles  {} ({} degenerate, {} split)\n", stats.triangles, degenerate, stats.triangles_split);
+    fmt::print("triangles  {} ({} degenerate, {} split)\n", stats.triangles, degenerate,
+               stats.triangles_split);
     fmt::print("grid       {} x {} x {}, voxel {:.6g}, {} mode, channels {}\n", grid.dims.x, grid.dims.y,
                grid.dims.z, grid.voxel_size, raster_mode_name(options.mode), options.channels.to_string());
     fmt::print("copies     {} in {} batch(es)\n", stats.copies, stats.batches);
@@ -117,7 +134,8 @@ int run_voxelize(const VoxelizeArgs& args) {
     fmt::print("time       upload {:.2f} ms + kernels {:.2f} ms + readback {:.2f} ms = {:.2f} ms\n",
                stats.upload_ms, stats.kernels_ms, stats.readback_ms, stats.total_ms());
     std::string stages;
-    for (const auto& [name, ms] : stats.stage_ms) stages += fmt::format("{}{} {:.2f}", stages.empty() ? "" : ", ", name, ms);
+    for (const auto& [name, ms] : stats.stage_ms)
+      stages += fmt::format("{}{} {:.2f}", stages.empty() ? "" : ", ", name, ms);
     fmt::print("stages ms  {}\n", stages);
     for (const auto& path : written) fmt::print("wrote      {}\n", path.string());
   }
@@ -136,9 +154,17 @@ Command add_voxelize(CLI::App& app) {
       ->check(CLI::Range(1u, kMaxGridDim));
   sub->add_option("--dims", args->dims, "exact grid dimensions X,Y,Z");
   sub->add_option("--bounds", args->bounds, "world box x0,y0,z0,x1,y1,z1 (default: scene bounds + margin)");
-  sub->add_option("--mode", args->mode, "conservative (every touched voxel) or center (the papers' rule)")
+  sub->add_option(
+         "--method", args->method,
+         "slice (the papers' one-pass duplication), grid (Llamas: one pass per slab), slicemap (Eisemann & "
+         "Decoret bit columns)")
       ->capture_default_str();
-  sub->add_option("--channels", args->channels, "comma list of occ,count,normal,material")->capture_default_str();
+  sub->add_option("--slicing", args->slicing,
+                  "slicemap slicing: uniform (default) or local (scene-fitted per column)");
+  sub->add_option("--mode", args->mode,
+                  "conservative (default: every touched voxel) or center (the papers' pixel-centre rule)");
+  sub->add_option("--channels", args->channels, "comma list of occ,count,normal,material")
+      ->capture_default_str();
   sub->add_option("--device", args->device, "OpenCL device P:D or name substring (also $VOXR_DEVICE)");
   sub->add_option("--report", args->report, "write a JSON report of counts and times");
   sub->add_option("--rows-per-copy", args->rows_per_copy, "rows one raster work item walks (tuning)")

@@ -39,6 +39,12 @@ const char* slicemap_slicing_name(SlicemapSlicing slicing) {
   return slicing == SlicemapSlicing::kLocal ? "local" : "uniform";
 }
 
+SlicemapSlicing parse_slicemap_slicing(std::string_view name) {
+  if (name == "uniform") return SlicemapSlicing::kUniform;
+  if (name == "local") return SlicemapSlicing::kLocal;
+  fail("unknown slicing '{}' (slicings: uniform, local)", name);
+}
+
 uint32_t Slicemap::bits_set(uint32_t i, uint32_t j) const {
   uint32_t n = 0;
   const uint64_t base = column(i, j) * words_per_column;
