@@ -30,12 +30,17 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
-Result run(const std::string& args) {
+// Runs voxr with `args`, environment assignments `env` ("A=1 B=2") prefixed.
+Result run_with_env(const std::string& env, const std::string& args) {
   const fs::path out = scratch() / "stdout.txt", err = scratch() / "stderr.txt";
   const std::string cmd =
-      std::string(VOXR_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
+      env + " " + std::string(VOXR_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+Result run(const std::string& args) {
+  return run_with_env("", args);
 }
 
 fs::path write_file(const std::string& name, const std::string& content) {
@@ -123,6 +128,29 @@ TEST(Cli, MethodsAndTheirFlags) {
                         "--mode");
   expect_one_line_error(run("voxelize " + mesh.string() + " --slicing local"), "--slicing");
   expect_one_line_error(run("voxelize " + mesh.string() + " --method slicemap --channels occ,count"), "occ");
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Cli, NoOpenClPlatformSaysHowToInstallPocl) {
+  const Result r = run_with_env("OCL_ICD_VENDORS=/nonexistent-vendors", "devices");
+  expect_one_line_error(r, "pocl-opencl-icd");
+}
+
+TEST(Cli, KernelBuildFailureShowsTheLog) {
+  const fs::path dir = scratch() / "broken-kernels";
+  fs::remove_all(dir);
+  fs::copy(fs::path(VOXR_SOURCE_DIR) / "kernels", dir);
+  std::ofstream(dir / "vox_setup.cl", std::ios::app) << "\nthis is not OpenC\n";
+  const fs::path mesh = write_file("tetra6.obj", kTetra);
+  const Result r =
+      run_with_env("VOXR_KERNEL_DIR=" + dir.string() + " POCL_CACHE_DIR=" + (scratch() / "pocl").string(),
+                   "voxelize " + mesh.string() + " --res 16");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("building kernel file vox_setup.cl"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("this"), std::string::npos) << "the compiler's log names the bad line: " << r.err;
 }
 
 }  // namespace
