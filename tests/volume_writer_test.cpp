@@ -468,6 +468,43 @@ TEST(VolumeWriter, VtiHeaderAndAppendedData) {
   EXPECT_EQ(s.substr(end), "\n  </AppendedData>\n</VTKFile>\n");
 }
 
+TEST(VolumeWriter, InsideChannelRoundTrip) {
+  // The dense interior bits next to occupancy and the sparse channels: NRRD sibling and VTI array, uint8 0/1.
+  const TempFolder folder("inside");
+  const fs::path& dir = folder.path;
+  VoxelGrid g = small_grid();
+  g.channels.add(Channel::kInside);
+  g.inside.assign(g.occ.size(), 0u);
+  std::vector<uint8_t> dense(g.spec.voxel_count(), 0);
+  for (const glm::uvec3 v :
+       {glm::uvec3(1, 1, 1), glm::uvec3(2, 1, 1), glm::uvec3(3, 2, 1), glm::uvec3(4, 3, 2)}) {
+    const uint64_t l = g.spec.linear_index(v.x, v.y, v.z);
+    g.inside[l >> 5] |= 1u << (l & 31);
+    dense[l] = 1;
+    ++g.inside_voxels;
+  }
+  const auto written = write_volume(g, dir / "s.nrrd");
+  ASSERT_EQ(written.size(), 5u);
+  EXPECT_EQ(written.back(), dir / "s.inside.nrrd");
+  const Nrrd n = read_nrrd(dir / "s.inside.nrrd");
+  EXPECT_EQ(n.fields.at("type"), "uint8");
+  EXPECT_EQ(n.fields.at("sizes"), "5 4 3");
+  EXPECT_EQ(n.data, bytes_of(dense));
+  EXPECT_EQ(read_nrrd(dir / "s.nrrd").data, bytes_of(dense_occ(g)));
+
+  write_volume(g, dir / "s.vti");
+  const std::string s = slurp(dir / "s.vti");
+  const size_t marker = s.find("<AppendedData encoding=\"raw\">");
+  ASSERT_NE(marker, std::string::npos);
+  const std::string xml = s.substr(0, marker);
+  const std::string element = "<DataArray type=\"UInt8\" Name=\"inside\"";
+  ASSERT_NE(xml.find(element), std::string::npos);
+  const size_t at = s.find('_', marker) + 1 + std::stoull(attribute(xml, element, "offset"));
+  ASSERT_EQ(load<uint64_t>(s, at), dense.size());
+  EXPECT_EQ(s.substr(at + 8, dense.size()), bytes_of(dense));
+  EXPECT_EQ(s.substr(at + 8 + dense.size()), "\n  </AppendedData>\n</VTKFile>\n");  // the last array
+}
+
 // ---- errors ----------------------------------------------------------------------------------------------
 
 void expect_error_naming(const VoxelGrid& g, const fs::path& out, const std::string& also) {

@@ -6,7 +6,7 @@ namespace voxr {
 
 namespace {
 constexpr Channel kAllChannels[] = {Channel::kOcc, Channel::kCount, Channel::kNormal, Channel::kMaterial,
-                                     Channel::kInside};
+                                    Channel::kInside};
 }
 
 const char* channel_name(Channel c) {
