@@ -154,3 +154,36 @@ TEST(Cli, KernelBuildFailureShowsTheLog) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Cli, SolidWritesTheInsideChannel) {
+  const fs::path mesh = write_file("tetra7.obj", kTetra);
+  const fs::path out = scratch() / "solid.nrrd", report = scratch() / "solid.json";
+  const Result r = run("voxelize " + mesh.string() + " --res 24 --solid parity -o " + out.string() +
+                       " --report " + report.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(scratch() / "solid.inside.nrrd"));
+  const nlohmann::json j = nlohmann::json::parse(slurp(report));
+  EXPECT_EQ(j["solid"]["mode"], "parity");
+  EXPECT_GT(j["solid"]["inside_voxels"].get<uint64_t>(), 0u);
+}
+
+TEST(Cli, SolidOnAnOpenMeshWarnsAndFloods) {
+  // The tetrahedron without its last face: open.
+  const fs::path mesh =
+      write_file("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n");
+  const Result r = run("voxelize " + mesh.string() + " --res 24 --solid parity --report " +
+                       (scratch() / "open.json").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("not closed"), std::string::npos) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(scratch() / "open.json"))["solid"]["mode"], "flood");
+}
+
+TEST(Cli, InsideChannelNeedsSolid) {
+  const fs::path mesh = write_file("tetra8.obj", kTetra);
+  expect_one_line_error(run("voxelize " + mesh.string() + " --channels occ,inside"), "--solid");
+  expect_one_line_error(run("voxelize " + mesh.string() + " --solid fill"), "fill");
+}
+
+}  // namespace

@@ -1,20 +1,27 @@
 // voxr voxelize INPUT -o OUT: mesh or scene -> voxel grid with the slice voxelizer, written by extension,
 // with a summary (and optional JSON report) of counts, memory and per-stage times.
 #include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
 
+#include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
 #include "cli/parse_args.h"
 #include "core/default_scene.h"
+#include "core/mesh_topology.h"
 #include "core/scene.h"
 #include "io/volume_writer.h"
 #include "voxelize/slice_voxelizer.h"
 #include "voxelize/slicemap_voxelizer.h"
+#include "voxelize/solid_voxelizer.h"
 
 namespace voxr::cli {
 
@@ -28,13 +35,44 @@ struct VoxelizeArgs {
   std::string method = "slice";
   std::string mode;     // empty: conservative (slice, grid)
   std::string slicing;  // empty: uniform (slicemap)
+  std::string solid;    // empty: surface only
   std::string channels = "occ";
   std::string device;
   std::string report;
   uint32_t rows_per_copy = 4;
   bool profile = false;
   bool quiet = false;
+  bool view = false;
 };
+
+// --view: voxr-view is this executable's neighbour (CMake puts both in the build folder).
+std::filesystem::path find_viewer(const std::string& output) {
+  if (output.empty()) fail("--view needs -o OUT: the viewer opens the written volume");
+  std::string ext = std::filesystem::path(output).extension().string();
+  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  if (ext != ".vti" && ext != ".nrrd")
+    fail("--view: voxr-view reads .vti and .nrrd outputs, not '{}'", output);
+  std::error_code ec;
+  const std::filesystem::path viewer =
+      std::filesystem::read_symlink("/proc/self/exe", ec).parent_path() / "voxr-view";
+  if (ec || !std::filesystem::exists(viewer))
+    fail("--view: {} not found (configure with -DVOXR_BUILD_VIEWER=ON and build it)", viewer.string());
+  return viewer;
+}
+
+// Runs voxr-view on `volume` and returns its exit code.
+int run_viewer(const std::filesystem::path& viewer, const std::string& volume) {
+  std::fflush(stdout);
+  std::string exe = viewer.string(), file = volume;
+  char* argv[] = {exe.data(), file.data(), nullptr};
+  pid_t pid = 0;
+  if (posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv, environ) != 0)
+    fail("--view: cannot start {}", exe);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
 
 nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const GridSpec& grid,
                            const VoxelizeOptions& options, const VoxelizeStats& stats) {
@@ -69,6 +107,7 @@ nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const 
 int run_voxelize(const VoxelizeArgs& args) {
   if (args.res && !args.dims.empty()) fail("--res and --dims are exclusive; give one");
   if (!args.output.empty()) check_output_path(args.output);
+  const std::filesystem::path viewer = args.view ? find_viewer(args.output) : std::filesystem::path();
   const Scene scene = args.input.empty() ? default_scene() : load_input(args.input);
   const TriangleSoup soup = scene_triangles(scene);
   const size_t degenerate = validate_soup(soup, scene.source);
@@ -97,6 +136,24 @@ int run_voxelize(const VoxelizeArgs& args) {
   options.channels = ChannelSet::parse(args.channels);
   if (slicemap && options.channels.attributes())
     fail("--method slicemap is binary: it produces the occ channel only (got --channels {})", args.channels);
+  if (options.channels.has(Channel::kInside) && args.solid.empty())
+    fail("the inside channel comes from solid voxelization: add --solid xor|late|parity|flood");
+  std::optional<SolidMode> solid;
+  if (!args.solid.empty()) {
+    solid = parse_solid_mode(args.solid);
+    if (args.method != "slice" || options.channels.attributes())
+      fail("--solid produces the occ and inside channels with its own kernels: drop --method and --channels");
+    const MeshTopology topology = mesh_topology(soup);
+    if (*solid != SolidMode::kFlood && !topology.closed()) {
+      // Parity along columns needs a closed surface; flood fill tolerates holes up to about a voxel.
+      fmt::print(
+          stderr,
+          "voxr: warning: {} is not closed ({} boundary and {} non-manifold edges); --solid {} would leak, "
+          "using --solid flood\n",
+          scene.source, topology.boundary, topology.nonmanifold, args.solid);
+      solid = SolidMode::kFlood;
+    }
+  }
   options.rows_per_copy = args.rows_per_copy;
   const bool tty = isatty(fileno(stderr)) && !args.quiet;
   if (tty)
@@ -104,8 +161,16 @@ int run_voxelize(const VoxelizeArgs& args) {
 
   ClRuntime cl(args.device);
   VoxelizeStats stats;
-  const VoxelGrid result = slicemap ? SlicemapVoxelizer(cl).run(soup, grid, slicing, &stats)
-                                    : SliceVoxelizer(cl).run(soup, grid, options, &stats);
+  SolidStats solid_stats;
+  const VoxelGrid result = solid      ? SolidVoxelizer(cl).run(soup, grid, *solid, &solid_stats)
+                           : slicemap ? SlicemapVoxelizer(cl).run(soup, grid, slicing, &stats)
+                                      : SliceVoxelizer(cl).run(soup, grid, options, &stats);
+  if (solid) {
+    stats.triangles = soup.triangle_count();
+    stats.voxels_set = result.voxels_set;
+    stats.kernels_ms = solid_stats.kernels_ms;
+    stats.stage_ms = solid_stats.stage_ms;
+  }
   if (tty) fmt::print(stderr, "\r{:<32}\r", "");
 
   std::vector<std::filesystem::path> written;
@@ -114,7 +179,14 @@ int run_voxelize(const VoxelizeArgs& args) {
     written = write_volume(result, args.output);
     if (tty) fmt::print(stderr, "\r{:<60}\r", "");
   }
-  const nlohmann::json report = make_report(args, cl, grid, options, stats);
+  nlohmann::json report = make_report(args, cl, grid, options, stats);
+  report["channels"] = result.channels.to_string();
+  if (solid) {
+    report["solid"] = {{"mode", solid_mode_name(*solid)},
+                       {"inside_voxels", solid_stats.inside_voxels},
+                       {"questionable_columns", solid_stats.questionable_columns},
+                       {"flood_iterations", solid_stats.flood_iterations}};
+  }
   if (!args.report.empty()) {
     std::ofstream out(args.report);
     out << report.dump(2) << "\n";
@@ -125,12 +197,21 @@ int run_voxelize(const VoxelizeArgs& args) {
     fmt::print("device     {}\n", cl.device().label());
     fmt::print("triangles  {} ({} degenerate, {} split)\n", stats.triangles, degenerate,
                stats.triangles_split);
-    fmt::print("grid       {} x {} x {}, voxel {:.6g}, {} mode, channels {}\n", grid.dims.x, grid.dims.y,
-               grid.dims.z, grid.voxel_size, raster_mode_name(options.mode), options.channels.to_string());
-    fmt::print("copies     {} in {} batch(es)\n", stats.copies, stats.batches);
-    fmt::print("voxels set {} ({:.3f}% of {})\n", stats.voxels_set,
-               100.0 * double(stats.voxels_set) / double(grid.voxel_count()), grid.voxel_count());
-    fmt::print("memory     {:.1f} MiB on the device\n", double(stats.device_bytes) / (1 << 20));
+    const std::string rule = solid      ? fmt::format("solid {}", solid_mode_name(*solid))
+                             : slicemap ? fmt::format("slicemap {}", slicemap_slicing_name(slicing))
+                                        : fmt::format("{} {}", args.method, raster_mode_name(options.mode));
+    fmt::print("grid       {} x {} x {}, voxel {:.6g}, {}, channels {}\n", grid.dims.x, grid.dims.y,
+               grid.dims.z, grid.voxel_size, rule, result.channels.to_string());
+    if (solid) {
+      fmt::print("inside     {} voxels ({} questionable columns, {} flood rounds)\n",
+                 solid_stats.inside_voxels, solid_stats.questionable_columns, solid_stats.flood_iterations);
+    } else {
+      fmt::print("copies     {} in {} batch(es), {} raster work items\n", stats.copies, stats.batches,
+                 stats.work_items);
+      fmt::print("voxels set {} ({:.3f}% of {})\n", stats.voxels_set,
+                 100.0 * double(stats.voxels_set) / double(grid.voxel_count()), grid.voxel_count());
+      fmt::print("memory     {:.1f} MiB on the device\n", double(stats.device_bytes) / (1 << 20));
+    }
     fmt::print("time       upload {:.2f} ms + kernels {:.2f} ms + readback {:.2f} ms = {:.2f} ms\n",
                stats.upload_ms, stats.kernels_ms, stats.readback_ms, stats.total_ms());
     std::string stages;
@@ -140,7 +221,7 @@ int run_voxelize(const VoxelizeArgs& args) {
     for (const auto& path : written) fmt::print("wrote      {}\n", path.string());
   }
   if (args.profile) fmt::print("\n{}", cl.profiler().table());
-  return 0;
+  return args.view ? run_viewer(viewer, args.output) : 0;
 }
 
 }  // namespace
@@ -159,6 +240,9 @@ Command add_voxelize(CLI::App& app) {
          "slice (the papers' one-pass duplication), grid (Llamas: one pass per slab), slicemap (Eisemann & "
          "Decoret bit columns)")
       ->capture_default_str();
+  sub->add_option("--solid", args->solid,
+                  "also fill the interior (inside channel: voxels whose centre is inside): xor, late, parity "
+                  "(exact on closed meshes) or flood (robust to holes)");
   sub->add_option("--slicing", args->slicing,
                   "slicemap slicing: uniform (default) or local (scene-fitted per column)");
   sub->add_option("--mode", args->mode,
@@ -172,6 +256,7 @@ Command add_voxelize(CLI::App& app) {
       ->capture_default_str();
   sub->add_flag("--profile", args->profile, "print a per-kernel time table");
   sub->add_flag("-q,--quiet", args->quiet, "print nothing but errors");
+  sub->add_flag("--view", args->view, "open the written volume (.vti, .nrrd) in voxr-view");
   return {sub, [args] { return run_voxelize(*args); }};
 }
 
