@@ -27,6 +27,13 @@ TriangleSoup load_packaged(const std::string& file) {
 TriangleSoup base_mesh(const std::string& base) {
   if (base == "torus") return make_torus();
   if (base == "sphere") return make_uv_sphere(1.0f, 64, 128);
+  if (base == "holed-sphere") {
+    // Four single-triangle holes about 0.025 wide (sub-voxel up to ~80 voxels across): not watertight.
+    TriangleSoup s = make_uv_sphere(1.0f, 128, 256);
+    for (size_t k = 0; k < 4; ++k)
+      s.triangles.erase(s.triangles.begin() + long(s.triangles.size() * (2 * k + 1) / 9));
+    return s;
+  }
   if (base == "bunny") return load_packaged("bunny.obj");
   if (base == "armadillo") return load_packaged("armadillo.off");
   if (base == "dragon") return load_packaged("ChineseDragon-10kv.off");

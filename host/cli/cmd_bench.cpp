@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "bench/bench_meshes.h"
+#include "bench/solid_table.h"
 #include "bench/table1.h"
 #ifdef VOXR_WITH_OPENVDB
 #include "peers/openvdb_peer.h"
@@ -161,6 +162,33 @@ int run_bench_table1(const Table1Args& args) {
   return 0;
 }
 
+struct SolidArgs {
+  SolidTableOptions options;
+  std::string device;
+  std::string out = "solid";
+};
+
+int run_bench_solid(const SolidArgs& args) {
+  ClRuntime cl(args.device);
+  SolidTableOptions options = args.options;
+  options.progress = [](const std::string& line) {
+    fmt::print("{}\n", line);
+    std::fflush(stdout);
+  };
+  const std::string device = fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name,
+                                         cl.device().driver_version);
+  fmt::print("device: {}\n", device);
+  const std::vector<SolidTableRow> rows = run_solid_table(cl, options);
+  for (const auto& [ext, text] : {std::pair{".csv", solid_table_csv(rows, device)},
+                                  std::pair{".md", solid_table_markdown(rows, device)}}) {
+    std::ofstream out(args.out + ext);
+    out << text;
+    if (!out) fail("{}{}: cannot write", args.out, ext);
+    fmt::print("wrote {}{}\n", args.out, ext);
+  }
+  return 0;
+}
+
 }  // namespace
 
 Command add_bench(CLI::App& app) {
@@ -206,9 +234,21 @@ Command add_bench(CLI::App& app) {
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
   t1->add_flag("--no-accuracy", table->no_accuracy, "skip the accuracy measures (time only)");
-  return {sub, [args, vox, table, t1] {
+  auto solid = std::make_shared<SolidArgs>();
+  CLI::App* so = sub->add_subcommand(
+      "solid", "Solid modes x meshes (closed and with holes): time, missing/extra voxels");
+  so->add_option("--meshes", solid->options.meshes, "bench meshes")->delimiter(',')->capture_default_str();
+  so->add_option("--res", solid->options.resolutions, "resolutions")
+      ->delimiter(',')
+      ->check(CLI::Range(1u, kMaxGridDim))
+      ->capture_default_str();
+  so->add_option("--device", solid->device, "OpenCL device P:D or name substring");
+  so->add_option("--out", solid->out, "output prefix: PREFIX.csv and PREFIX.md")->capture_default_str();
+  so->add_option("--repeat", solid->options.repeat, "timed runs per case")->check(CLI::Range(1, 1000));
+  return {sub, [args, vox, table, t1, solid, so] {
             if (vox->parsed()) return run_bench_voxelize(*args);
             if (t1->parsed()) return run_bench_table1(*table);
+            if (so->parsed()) return run_bench_solid(*solid);
             return 2;
           }};
 }
