@@ -1,0 +1,271 @@
+#include "volume_loader.h"
+
+#include <vtkDataArray.h>
+#include <vtkMatrix3x3.h>
+#include <vtkNrrdReader.h>
+#include <vtkPointData.h>
+#include <vtkXMLImageDataReader.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "core/error.h"
+#include "vtk_messages.h"
+
+namespace voxr::view {
+
+namespace fs = std::filesystem;
+
+bool Volume::has_array(const std::string& name) const {
+  return std::find(arrays.begin(), arrays.end(), name) != arrays.end();
+}
+
+namespace {
+
+// voxr's channels in the order the viewer lists them; other arrays follow in file order.
+constexpr std::array<const char*, 5> kChannelOrder{"occupancy", "count", "normal", "material", "inside"};
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string read_prefix(const fs::path& file, size_t bytes) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) fail("{}: cannot open the file", file.string());
+  std::string text(bytes, '\0');
+  in.read(text.data(), std::streamsize(bytes));
+  text.resize(size_t(in.gcount()));
+  return text;
+}
+
+void check_readable_file(const fs::path& file) {
+  std::error_code ec;
+  if (!fs::exists(file, ec)) fail("{}: no such file", file.string());
+  if (fs::is_directory(file, ec)) fail("{}: is a folder, not a volume file", file.string());
+}
+
+// Moves the image's direction into a local-to-world matrix (rotation about the origin) and resets it.
+vtkSmartPointer<vtkMatrix4x4> take_direction(vtkImageData* image) {
+  vtkMatrix3x3* d = image->GetDirectionMatrix();
+  const double* o = image->GetOrigin();
+  auto m = vtkSmartPointer<vtkMatrix4x4>::New();
+  for (int r = 0; r < 3; ++r) {
+    double t = o[r];
+    for (int c = 0; c < 3; ++c) {
+      m->SetElement(r, c, d->GetElement(r, c));
+      t -= d->GetElement(r, c) * o[c];
+    }
+    m->SetElement(r, 3, t);
+  }
+  image->SetDirectionMatrix(1, 0, 0, 0, 1, 0, 0, 0, 1);
+  return m;
+}
+
+void order_arrays(Volume& v) {
+  vtkPointData* pd = v.image->GetPointData();
+  for (const char* name : kChannelOrder)
+    if (pd->GetArray(name)) v.arrays.push_back(name);
+  for (int i = 0; i < pd->GetNumberOfArrays(); ++i) {
+    const char* name = pd->GetArrayName(i);
+    if (name && !v.has_array(name)) v.arrays.push_back(name);
+  }
+}
+
+// ---- .vti ------------------------------------------------------------------------------------------------
+
+Volume load_vti(const fs::path& file) {
+  const std::string head = read_prefix(file, 4096);
+  if (head.find("<VTKFile") == std::string::npos || head.find("type=\"ImageData\"") == std::string::npos)
+    fail("{}: not a VTK XML ImageData file (no <VTKFile type=\"ImageData\"> header)", file.string());
+
+  clear_vtk_errors();
+  auto reader = vtkSmartPointer<vtkXMLImageDataReader>::New();
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  if (const std::string err = last_vtk_error(); !err.empty())
+    fail("{}: cannot read the volume: {}", file.string(), err);
+
+  Volume v;
+  v.source = file;
+  v.files = {file};
+  v.image = vtkSmartPointer<vtkImageData>::New();
+  v.image->ShallowCopy(reader->GetOutput());
+  v.to_world = take_direction(v.image);
+  order_arrays(v);
+  return v;
+}
+
+// ---- .nrrd -----------------------------------------------------------------------------------------------
+
+struct NrrdHeader {
+  std::map<std::string, std::string> fields;  // keys lower case
+  std::string get(const std::string& key) const {
+    const auto it = fields.find(key);
+    return it == fields.end() ? std::string() : it->second;
+  }
+};
+
+NrrdHeader read_nrrd_header(const fs::path& file) {
+  const std::string head = read_prefix(file, 1 << 16);
+  if (head.rfind("NRRD000", 0) != 0) fail("{}: not a NRRD file (no NRRD000x magic line)", file.string());
+  NrrdHeader h;
+  std::istringstream in(head);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) break;
+    if (line[0] == '#') continue;
+    const size_t colon = line.find(": ");
+    if (colon == std::string::npos) continue;  // key:=value pairs and the like
+    h.fields[lower(line.substr(0, colon))] = line.substr(colon + 2);
+  }
+  return h;
+}
+
+// The array name of a NRRD file: voxr writes "content: voxr <channel>".
+std::string nrrd_array_name(const NrrdHeader& h, const fs::path& file) {
+  std::string content = h.get("content");
+  if (content.rfind("voxr ", 0) == 0) return content.substr(5);
+  if (!content.empty()) return content;
+  return file.stem().string();
+}
+
+// Unit columns of "space directions" when they are not axis aligned; empty otherwise (or when absent).
+std::optional<std::array<double, 9>> nrrd_rotation(const NrrdHeader& h) {
+  std::string text = h.get("space directions");
+  if (text.empty()) return std::nullopt;
+  std::vector<std::array<double, 3>> vectors;
+  size_t pos = 0;
+  while ((pos = text.find('(', pos)) != std::string::npos) {
+    const size_t end = text.find(')', pos);
+    if (end == std::string::npos) break;
+    std::array<double, 3> v{};
+    std::string inner = text.substr(pos + 1, end - pos - 1);
+    std::replace(inner.begin(), inner.end(), ',', ' ');
+    std::istringstream in(inner);
+    in >> v[0] >> v[1] >> v[2];
+    if (!in) return std::nullopt;
+    vectors.push_back(v);
+    pos = end + 1;
+  }
+  if (vectors.size() != 3) return std::nullopt;
+  std::array<double, 9> d{};  // row-major, columns are the axes
+  bool aligned = true;
+  for (int c = 0; c < 3; ++c) {
+    const double len = std::sqrt(vectors[c][0] * vectors[c][0] + vectors[c][1] * vectors[c][1] +
+                                 vectors[c][2] * vectors[c][2]);
+    if (len <= 0.0) return std::nullopt;
+    for (int r = 0; r < 3; ++r) {
+      d[r * 3 + c] = vectors[c][r] / len;
+      if (std::abs(d[r * 3 + c] - (r == c ? 1.0 : 0.0)) > 1e-6) aligned = false;
+    }
+  }
+  if (aligned) return std::nullopt;
+  return d;
+}
+
+vtkSmartPointer<vtkImageData> read_nrrd_image(const fs::path& file) {
+  clear_vtk_errors();
+  auto reader = vtkSmartPointer<vtkNrrdReader>::New();
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  if (const std::string err = last_vtk_error(); !err.empty())
+    fail("{}: cannot read the volume: {}", file.string(), err);
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->ShallowCopy(reader->GetOutput());
+  if (!image->GetPointData()->GetScalars() || image->GetNumberOfPoints() == 0)
+    fail("{}: the NRRD reader returned no data", file.string());
+  return image;
+}
+
+// "out.count.nrrd" -> "out.nrrd" when the stem ends in a voxr channel name and the base file exists.
+fs::path nrrd_set_base(const fs::path& file) {
+  const fs::path stem(file.stem());
+  const std::string suffix = stem.extension().string();  // ".count"
+  if (suffix.size() > 1) {
+    const std::string channel = suffix.substr(1);
+    if (std::find_if(kChannelOrder.begin(), kChannelOrder.end(),
+                     [&](const char* c) { return channel == c; }) != kChannelOrder.end()) {
+      fs::path base = file.parent_path() / stem.stem();
+      base += file.extension();
+      std::error_code ec;
+      if (fs::is_regular_file(base, ec)) return base;
+    }
+  }
+  return file;
+}
+
+Volume load_nrrd(const fs::path& file) {
+  read_nrrd_header(file);  // the magic check, before anything else is opened
+  const fs::path base = nrrd_set_base(file);
+  const NrrdHeader base_header = read_nrrd_header(base);
+
+  Volume v;
+  v.source = file;
+  v.image = read_nrrd_image(base);
+  v.image->GetPointData()->GetScalars()->SetName(nrrd_array_name(base_header, base).c_str());
+  v.files.push_back(base);
+  if (const auto rotation = nrrd_rotation(base_header)) v.image->SetDirectionMatrix(rotation->data());
+
+  // Siblings: <stem>.<name><ext> next to the base.
+  const std::string prefix = base.stem().string() + ".";
+  std::vector<fs::path> siblings;
+  std::error_code ec;
+  for (const auto& entry :
+       fs::directory_iterator(base.parent_path().empty() ? "." : base.parent_path(), ec)) {
+    const fs::path p = entry.path();
+    const std::string name = p.filename().string();
+    if (p.extension() == base.extension() && name.rfind(prefix, 0) == 0 && p.filename() != base.filename() &&
+        fs::path(p.stem()).stem() == base.stem())
+      siblings.push_back(p);
+  }
+  std::sort(siblings.begin(), siblings.end());
+  const int* dims = v.image->GetDimensions();
+  for (const fs::path& p : siblings) {
+    const NrrdHeader h = read_nrrd_header(p);
+    vtkSmartPointer<vtkImageData> image = read_nrrd_image(p);
+    const int* d = image->GetDimensions();
+    if (d[0] != dims[0] || d[1] != dims[1] || d[2] != dims[2])
+      fail("{}: dimensions {}x{}x{} differ from {}'s {}x{}x{}", p.string(), d[0], d[1], d[2],
+           base.filename().string(), dims[0], dims[1], dims[2]);
+    vtkDataArray* array = image->GetPointData()->GetScalars();
+    array->SetName(nrrd_array_name(h, p).c_str());
+    if (v.image->GetPointData()->GetArray(array->GetName()))
+      fail("{}: array '{}' is already in {}", p.string(), array->GetName(), base.filename().string());
+    v.image->GetPointData()->AddArray(array);
+    v.files.push_back(p);
+  }
+  v.to_world = take_direction(v.image);
+  order_arrays(v);
+  return v;
+}
+
+}  // namespace
+
+Volume load_volume(const fs::path& file) {
+  check_readable_file(file);
+  const std::string ext = lower(file.extension().string());
+  Volume v;
+  if (ext == ".vti")
+    v = load_vti(file);
+  else if (ext == ".nrrd")
+    v = load_nrrd(file);
+  else if (ext.empty())
+    fail("{}: no extension to tell the format by (voxr-view reads .vti and .nrrd)", file.string());
+  else
+    fail("{}: unknown volume format '{}' (voxr-view reads .vti and .nrrd)", file.string(),
+         file.extension().string());
+  if (v.arrays.empty()) fail("{}: holds no point-data arrays", file.string());
+  if (v.image->GetNumberOfPoints() <= 0) fail("{}: the volume is empty", file.string());
+  return v;
+}
+
+}  // namespace voxr::view
