@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -17,8 +19,9 @@ struct Result {
   std::string out, err;
 };
 
+// One folder per test process: ctest runs tests in parallel processes that must not share files.
 fs::path scratch() {
-  const fs::path dir = fs::path(testing::TempDir()) / "voxr_cli_test";
+  const fs::path dir = fs::path(testing::TempDir()) / ("voxr_cli_test_" + std::to_string(getpid()));
   fs::create_directories(dir);
   return dir;
 }

@@ -12,38 +12,15 @@
 #include <map>
 #include <string>
 
-#include "core/mesh_topology.h"
 #include "core/error.h"
 #include "core/mesh_loader.h"
+#include "core/mesh_topology.h"
+#include "test_support.h"
 
 namespace voxr {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A fresh folder per test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("voxr-mesh-test-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  fs::path write(const std::string& name, const std::string& content) const {
-    const fs::path p = path_ / name;
-    std::ofstream(p, std::ios::binary) << content;
-    return p;
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 // Unit cube [0,1]^3: 8 corners (x from bit 0, y bit 1, z bit 2), 6 outward quads.
 const int kCubeQuads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
@@ -138,7 +115,7 @@ void expect_error(const fs::path& file, const std::string& reason) {
 }
 
 TEST(MeshLoader, LoadsCubeInEveryFormat) {
-  TempDir dir;
+  test::TempDir dir;
   const std::map<std::string, std::string> files = {
       {"cube.obj", cube_obj()},          {"cube.off", cube_off()},       {"cube.ply", cube_ply()},
       {"binary.ply", cube_ply_binary()}, {"cube.stl", cube_stl_ascii()}, {"binary.stl", cube_stl_binary()},
@@ -157,7 +134,7 @@ TEST(MeshLoader, LoadsCubeInEveryFormat) {
 }
 
 TEST(MeshLoader, FanTriangulatesPolygons) {
-  TempDir dir;
+  test::TempDir dir;
   const TriangleSoup soup = load_mesh(
       dir.write("hex.obj", "v 0 0 0\nv 1 0 0\nv 2 1 0\nv 1 2 0\nv 0 2 0\nv -1 1 0\nf 1 2 3 4 5 6\n"));
   ASSERT_EQ(soup.triangle_count(), 4u);
@@ -165,7 +142,7 @@ TEST(MeshLoader, FanTriangulatesPolygons) {
 }
 
 TEST(MeshLoader, ReadsOffVariants) {
-  TempDir dir;
+  test::TempDir dir;
   // Counts on the keyword line, comments, a signed number, per-vertex and per-face colours (COFF).
   const TriangleSoup soup = load_mesh(
       dir.write("variant.off",
@@ -177,7 +154,7 @@ TEST(MeshLoader, ReadsOffVariants) {
 }
 
 TEST(MeshLoader, ReportsMissingUnreadableAndUnsupportedFiles) {
-  TempDir dir;
+  test::TempDir dir;
   expect_error(dir.path() / "missing.obj", "no such file");
   fs::create_directory(dir.path() / "folder.obj");
   expect_error(dir.path() / "folder.obj", "is a directory");
@@ -193,7 +170,7 @@ TEST(MeshLoader, ReportsMissingUnreadableAndUnsupportedFiles) {
 }
 
 TEST(MeshLoader, RejectsGarbageInEveryFormat) {
-  TempDir dir;
+  test::TempDir dir;
   std::string garbage;
   uint32_t x = 12345;
   for (int i = 0; i < 4000; ++i) {
@@ -211,7 +188,7 @@ TEST(MeshLoader, RejectsGarbageInEveryFormat) {
 }
 
 TEST(MeshLoader, RejectsNonFiniteVertices) {
-  TempDir dir;
+  test::TempDir dir;
   expect_error(dir.write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
                "line 2: vertex coordinate 'nan' is not a finite number");
   expect_error(dir.write("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 -inf\nf 1 2 3\n"),
@@ -242,7 +219,7 @@ TEST(MeshLoader, RejectsNonFiniteVertices) {
 }
 
 TEST(MeshLoader, RejectsBadIndicesAndTruncatedFiles) {
-  TempDir dir;
+  test::TempDir dir;
   expect_error(dir.write("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"),
                "face 0 uses vertex 8 but the file has 3 vertices");
   expect_error(dir.write("index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"),
@@ -266,7 +243,7 @@ TEST(MeshLoader, RejectsBadIndicesAndTruncatedFiles) {
 }
 
 TEST(MeshLoader, PrintsNothing) {
-  TempDir dir;
+  test::TempDir dir;
   ::testing::internal::CaptureStderr();
   ::testing::internal::CaptureStdout();
   load_error(dir.write("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"));

@@ -11,40 +11,17 @@
 #include <optional>
 #include <string>
 
-#include "core/mesh_topology.h"
 #include "core/default_scene.h"
 #include "core/error.h"
 #include "core/generators.h"
+#include "core/mesh_topology.h"
 #include "core/scene.h"
+#include "test_support.h"
 
 namespace voxr {
 namespace {
 
 namespace fs = std::filesystem;
-
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("voxr-scene-test-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  fs::path write(const std::string& name, const std::string& content) const {
-    const fs::path p = path_ / name;
-    fs::create_directories(p.parent_path());
-    std::ofstream(p, std::ios::binary) << content;
-    return p;
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 // Sets an environment variable for the scope of a test.
 class ScopedEnv {
@@ -83,7 +60,7 @@ void expect_near(glm::vec3 a, glm::vec3 b, float tolerance = 1e-5f) {
 }
 
 TEST(Scene, LoadsEverySection) {
-  TempDir dir;
+  test::TempDir dir;
   dir.write("meshes/tri.obj", kTriangleObj);
   const fs::path file = dir.write("scenes/s.json", R"({
     // comments are allowed
@@ -243,7 +220,7 @@ TEST(Scene, SyntaxErrorsGiveTheLine) {
 }
 
 TEST(Scene, MeshErrorsNameTheMeshKey) {
-  TempDir dir;
+  test::TempDir dir;
   dir.write("broken.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
   const fs::path file = dir.write("s.json", R"({"meshes": [{"generator": "box"}, {"file": "broken.obj"}]})");
   try {
@@ -315,7 +292,7 @@ TEST(Scene, DefaultsFrameTheScene) {
 }
 
 TEST(Scene, LoadInputWrapsAMeshFile) {
-  TempDir dir;
+  test::TempDir dir;
   const fs::path mesh = dir.write("tri.obj", kTriangleObj);
   const Scene s = load_input(mesh);
   EXPECT_EQ(s.source, mesh.string());
@@ -333,7 +310,7 @@ TEST(Scene, LoadInputWrapsAMeshFile) {
 }
 
 TEST(Scene, MeshDirResolvesSharedMeshes) {
-  TempDir meshes, scenes;
+  test::TempDir meshes, scenes;
   meshes.write("shared.obj", kTriangleObj);
   scenes.write("local.obj", kTriangleObj);
   const ScopedEnv env("VOXR_MESH_DIR", meshes.path().string());

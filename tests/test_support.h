@@ -4,7 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <atomic>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 
@@ -13,6 +18,8 @@
 #include "voxelize/voxel_grid.h"
 
 namespace voxr::test {
+
+namespace fs = std::filesystem;
 
 // The runtime on $VOXR_DEVICE or the default device, created on first use.
 ClRuntime& runtime();
@@ -25,6 +32,31 @@ TriangleSoup random_soup(uint32_t seed, size_t count, float lo, float hi, float 
 
 // Axis-aligned box as 12 triangles (outward winding).
 TriangleSoup box_soup(glm::vec3 lo, glm::vec3 hi, uint32_t material = 0);
+
+// A fresh folder per test (or per object), removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    static std::atomic<int> counter{0};
+    path_ = fs::temp_directory_path() /
+            ("voxr-test-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  fs::path write(const std::string& name, const std::string& content) const {
+    const fs::path p = path_ / name;
+    fs::create_directories(p.parent_path());
+    std::ofstream(p, std::ios::binary) << content;
+    return p;
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
 
 // Mesh from $VOXR_MESH_DIR (scripts/fetch-meshes.sh), or an empty path when absent.
 std::string mesh_path(const std::string& name);

@@ -35,6 +35,24 @@ std::map<std::string, Profiler::Stat> Profiler::stats() const {
   return out;
 }
 
+Profiler::Split Profiler::since(const std::map<std::string, Stat>& before) const {
+  Split split;
+  for (const auto& [name, s] : stats()) {
+    const auto it = before.find(name);
+    const double ms = s.total_ms - (it == before.end() ? 0.0 : it->second.total_ms);
+    if (!(ms > 0.0)) continue;
+    if (name.rfind("upload", 0) == 0) {
+      split.upload_ms += ms;
+    } else if (name.rfind("readback", 0) == 0) {
+      split.readback_ms += ms;
+    } else {
+      split.kernels_ms += ms;
+      split.stage_ms[name] += ms;
+    }
+  }
+  return split;
+}
+
 double Profiler::total_ms(const std::string& name) const {
   const auto it = times_.find(name);
   if (it == times_.end()) return 0.0;

@@ -23,6 +23,16 @@ class Profiler {
   void clear();
 
   std::map<std::string, Stat> stats() const;
+
+  // What was recorded since `before` (an earlier stats()), split by name: transfers named "upload..." and
+  // "readback...", and everything else as kernel time per stage.
+  struct Split {
+    double upload_ms = 0.0;
+    double readback_ms = 0.0;
+    double kernels_ms = 0.0;
+    std::map<std::string, double> stage_ms;
+  };
+  Split since(const std::map<std::string, Stat>& before) const;
   double total_ms(const std::string& name) const;  // 0 when never recorded
   double sum_ms() const;                           // every kernel and transfer
   // Aligned text table, one row per name, sorted by total time.

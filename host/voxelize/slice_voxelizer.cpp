@@ -18,21 +18,6 @@ namespace {
 constexpr size_t kGroup = 256;
 
 // Profiled milliseconds per name accumulated since `before`.
-std::map<std::string, double> profile_since(const Profiler& profiler,
-                                            const std::map<std::string, Profiler::Stat>& before) {
-  std::map<std::string, double> out;
-  for (const auto& [name, s] : profiler.stats()) {
-    const auto it = before.find(name);
-    const double prev = it == before.end() ? 0.0 : it->second.total_ms;
-    if (s.total_ms - prev > 0.0) out[name] = s.total_ms - prev;
-  }
-  return out;
-}
-
-bool is_prefixed(const std::string& name, const char* prefix) {
-  return name.rfind(prefix, 0) == 0;
-}
-
 }  // namespace
 
 DeviceMesh::DeviceMesh(ClRuntime& cl, const TriangleSoup& soup) {
@@ -66,8 +51,7 @@ VoxelGrid SliceVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, co
   const auto before = cl_.profiler().stats();
   const DeviceMesh mesh(cl_, pieces ? *pieces : soup);
   cl_.finish("uploading the mesh");
-  double upload_ms = 0.0;
-  for (const auto& [name, ms] : profile_since(cl_.profiler(), before)) upload_ms += ms;
+  const double upload_ms = cl_.profiler().since(before).upload_ms;
   VoxelGrid result = run(mesh, grid, options, stats);
   if (stats) {
     stats->triangles_split = split;
@@ -151,8 +135,8 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
         cl_.launch("expand", expand, tris, kGroup, cl_uint(tris), counts, offsets, info, cl_ulong(begin),
                    cl_ulong(end), records);
       expanded = true;
-      cl_.launch(name, raster, end - begin, kGroup, params, snapped, records, cl_uint(end - begin), occ, ranks,
-                 acc, material);
+      cl_.launch(name, raster, end - begin, kGroup, params, snapped, records, cl_uint(end - begin), occ,
+                 ranks, acc, material);
     }
   };
 
@@ -232,16 +216,11 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
     stats->batches = batches;
     stats->voxels_set = out.voxels_set;
     stats->device_bytes = device_bytes;
-    for (const auto& [name, ms] : profile_since(cl_.profiler(), before)) {
-      if (is_prefixed(name, "upload")) {
-        stats->upload_ms += ms;
-      } else if (is_prefixed(name, "readback")) {
-        stats->readback_ms += ms;
-      } else {
-        stats->kernels_ms += ms;
-        stats->stage_ms[name] += ms;
-      }
-    }
+    const Profiler::Split split = cl_.profiler().since(before);
+    stats->upload_ms = split.upload_ms;
+    stats->readback_ms = split.readback_ms;
+    stats->kernels_ms = split.kernels_ms;
+    stats->stage_ms = split.stage_ms;
     stats->wall_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }

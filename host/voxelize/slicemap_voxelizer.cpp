@@ -18,21 +18,6 @@ constexpr size_t kGroup = 256;
 constexpr uint32_t kTileRows = 8;
 constexpr uint32_t kTileCols = 8;
 
-std::map<std::string, double> profile_since(const Profiler& profiler,
-                                            const std::map<std::string, Profiler::Stat>& before) {
-  std::map<std::string, double> out;
-  for (const auto& [name, s] : profiler.stats()) {
-    const auto it = before.find(name);
-    const double prev = it == before.end() ? 0.0 : it->second.total_ms;
-    if (s.total_ms - prev > 0.0) out[name] = s.total_ms - prev;
-  }
-  return out;
-}
-
-bool is_prefixed(const std::string& name, const char* prefix) {
-  return name.rfind(prefix, 0) == 0;
-}
-
 }  // namespace
 
 const char* slicemap_slicing_name(SlicemapSlicing slicing) {
@@ -78,8 +63,7 @@ VoxelGrid SlicemapVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid,
   const auto before = cl_.profiler().stats();
   const DeviceMesh mesh(cl_, pieces ? *pieces : soup);
   cl_.finish("uploading the mesh");
-  double upload_ms = 0.0;
-  for (const auto& [name, ms] : profile_since(cl_.profiler(), before)) upload_ms += ms;
+  const double upload_ms = cl_.profiler().since(before).upload_ms;
   VoxelGrid result = run(mesh, grid, slicing, stats, slicemap, options);
   if (stats) {
     stats->triangles_split = split;
@@ -211,16 +195,11 @@ VoxelGrid SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, S
     stats->batches = batches;
     stats->voxels_set = out.voxels_set;
     stats->device_bytes = device_bytes;
-    for (const auto& [name, ms] : profile_since(cl_.profiler(), before)) {
-      if (is_prefixed(name, "upload")) {
-        stats->upload_ms += ms;
-      } else if (is_prefixed(name, "readback")) {
-        stats->readback_ms += ms;
-      } else {
-        stats->kernels_ms += ms;
-        stats->stage_ms[name] += ms;
-      }
-    }
+    const Profiler::Split split = cl_.profiler().since(before);
+    stats->upload_ms = split.upload_ms;
+    stats->readback_ms = split.readback_ms;
+    stats->kernels_ms = split.kernels_ms;
+    stats->stage_ms = split.stage_ms;
     stats->wall_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
