@@ -54,17 +54,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void slicemap_rast
   const int col_first = t.first[0] + (int)(rec.y & 0xffffu) * SLICEMAP_TILE_COLS;
   const int col_last = min(t.last[0], col_first + SLICEMAP_TILE_COLS - 1);
 
-  /* Projected edges, counter-clockwise, with the top-left rule's bias (as vox_raster.cl). */
-  const int o1 = t.n[2] > 0 ? 1 : 2, o2 = t.n[2] > 0 ? 2 : 1;
-  const long px[3] = {t.v[0][0], t.v[o1][0], t.v[o2][0]};
-  const long py[3] = {t.v[0][1], t.v[o1][1], t.v[o2][1]};
-  long edge_dx[3], edge_dy[3], edge_bias[3];
-  for (int e = 0; e < 3; ++e) {
-    const int f = e == 2 ? 0 : e + 1;
-    edge_dx[e] = px[f] - px[e];
-    edge_dy[e] = py[f] - py[e];
-    edge_bias[e] = (edge_dy[e] < 0 || (edge_dy[e] == 0 && edge_dx[e] < 0)) ? 0 : 1;
-  }
+  VoxCoverage coverage; /* the centre rule, shared with vox_scanline.h */
+  vox_coverage_init(&coverage, &t);
 
   /* Plane depth at a centre: z S = v0z + num / d with num = -sgn (n.x (cx - v0x) + n.y (cy - v0y)) and
    * d = |n.z| > 0. zf = v0z + floor(num / d), kept as quotient q and remainder r in [0, d), stepped along
@@ -83,16 +74,12 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void slicemap_rast
     const long cy = (long)j * VOX_S + VOX_S / 2;
     const long cx0 = (long)col_first * VOX_S + VOX_S / 2;
     long edge[3];
-    for (int e = 0; e < 3; ++e) edge[e] = edge_dx[e] * (cy - py[e]) - edge_dy[e] * (cx0 - px[e]);
+    vox_coverage_start(&coverage, col_first, j, edge);
     const long num = -sgn * (t.n[0] * (cx0 - t.v[0][0]) + t.n[1] * (cy - t.v[0][1]));
     long q = slicemap_floor_div(num, d);
     long r = num - q * d;
     for (int i = col_first; i <= col_last; ++i) {
-      int inside = 1;
-      for (int e = 0; e < 3; ++e) {
-        inside &= edge[e] >= edge_bias[e];
-        edge[e] -= edge_dy[e] * VOX_S;
-      }
+      const int inside = vox_coverage_next(&coverage, edge);
       const long zf = t.v[0][2] + q;
       q += step_q;
       r += step_r;

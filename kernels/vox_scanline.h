@@ -234,18 +234,8 @@ inline void vox_scan_slab(const VoxTri* t, const VoxGridParams* grid, int k, int
     col_step[q] = col_ax[q] * VOX_S;
   }
 #else
-  /* Projected edges of the triangle, ordered counter-clockwise. */
-  const int o1 = t->n[2] > 0 ? 1 : 2, o2 = t->n[2] > 0 ? 2 : 1;
-  const long px[3] = {t->v[0][0], t->v[o1][0], t->v[o2][0]};
-  const long py[3] = {t->v[0][1], t->v[o1][1], t->v[o2][1]};
-  long edge_dx[3], edge_dy[3], edge_bias[3];
-  for (int e = 0; e < 3; ++e) {
-    const int f = e == 2 ? 0 : e + 1;
-    edge_dx[e] = px[f] - px[e];
-    edge_dy[e] = py[f] - py[e];
-    /* Top-left rule: a centre exactly on an edge belongs to the triangle on the edge's left/top side. */
-    edge_bias[e] = (edge_dy[e] < 0 || (edge_dy[e] == 0 && edge_dx[e] < 0)) ? 0 : 1;
-  }
+  VoxCoverage coverage;
+  vox_coverage_init(&coverage, t);
   const long sgn = t->n[2] > 0 ? 1 : -1;
   const long depth_lo = rel_z * t->n[2] * sgn;
   const long depth_hi = (rel_z + VOX_S) * t->n[2] * sgn;
@@ -292,15 +282,11 @@ inline void vox_scan_slab(const VoxTri* t, const VoxGridParams* grid, int k, int
     const long cy = (long)j * VOX_S + VOX_S / 2;
     const long cx0 = (long)col_first * VOX_S + VOX_S / 2;
     long edge[3];
-    for (int e = 0; e < 3; ++e) edge[e] = edge_dx[e] * (cy - py[e]) - edge_dy[e] * (cx0 - px[e]);
+    vox_coverage_start(&coverage, col_first, j, edge);
     long depth = -sgn * (t->n[0] * (cx0 - t->v[0][0]) + t->n[1] * (cy - t->v[0][1]));
     const long depth_step = -sgn * t->n[0] * VOX_S;
     for (int i = col_first; i <= col_last; ++i) {
-      int inside = depth_lo <= depth && depth < depth_hi;
-      for (int e = 0; e < 3; ++e) {
-        inside &= edge[e] >= edge_bias[e];
-        edge[e] -= edge_dy[e] * VOX_S;
-      }
+      const int inside = vox_coverage_next(&coverage, edge) && depth_lo <= depth && depth < depth_hi;
       depth += depth_step;
       if (inside) vox_emit(w, row_base + (ulong)i);
     }

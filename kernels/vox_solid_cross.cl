@@ -100,17 +100,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_cro
   const int row_first = t.first[1] + (int)block * VOX_SOLID_ROWS;
   const int row_last = min(t.last[1], row_first + VOX_SOLID_ROWS - 1);
 
-  /* Projected edges, counter-clockwise, with the top-left bias (as vox_raster.cl's centre rule). */
-  const int o1 = t.n[2] > 0 ? 1 : 2, o2 = t.n[2] > 0 ? 2 : 1;
-  const long px[3] = {t.v[0][0], t.v[o1][0], t.v[o2][0]};
-  const long py[3] = {t.v[0][1], t.v[o1][1], t.v[o2][1]};
-  long edge_dx[3], edge_dy[3], edge_bias[3];
-  for (int e = 0; e < 3; ++e) {
-    const int f = e == 2 ? 0 : e + 1;
-    edge_dx[e] = px[f] - px[e];
-    edge_dy[e] = py[f] - py[e];
-    edge_bias[e] = (edge_dy[e] < 0 || (edge_dy[e] == 0 && edge_dx[e] < 0)) ? 0 : 1;
-  }
+  VoxCoverage coverage; /* the centre rule, shared with vox_scanline.h */
+  vox_coverage_init(&coverage, &t);
   const long sgn = t.n[2] > 0 ? 1 : -1;
   const long an = sgn * t.n[2];
   const long v0z = t.v[0][2];
@@ -126,9 +117,9 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_cro
     float xlo = INFINITY, xhi = -INFINITY;
     for (int e = 0; e < 3; ++e) {
       const int f = e == 2 ? 0 : e + 1;
-      const long ya = py[e], yb = py[f];
+      const long ya = coverage.py[e], yb = coverage.py[f];
       if (min(ya, yb) > cy || max(ya, yb) < cy) continue;
-      float xa = (float)px[e], xb = (float)px[f];
+      float xa = (float)coverage.px[e], xb = (float)coverage.px[f];
       if (ya != yb) xa = xb = xa + (xb - xa) * ((float)(cy - ya) / (float)(yb - ya));
       xlo = fmin(xlo, fmin(xa, xb));
       xhi = fmax(xhi, fmax(xa, xb));
@@ -140,15 +131,11 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_cro
 
     const long cx0 = (long)col_first * VOX_S + VOX_S / 2;
     long edge[3];
-    for (int e = 0; e < 3; ++e) edge[e] = edge_dx[e] * (cy - py[e]) - edge_dy[e] * (cx0 - px[e]);
+    vox_coverage_start(&coverage, col_first, j, edge);
     long depth = -sgn * (t.n[0] * (cx0 - t.v[0][0]) + t.n[1] * (cy - t.v[0][1]));
     const long depth_step = -sgn * t.n[0] * VOX_S;
     for (int i = col_first; i <= col_last; ++i) {
-      int inside = 1;
-      for (int e = 0; e < 3; ++e) {
-        inside &= edge[e] >= edge_bias[e];
-        edge[e] -= edge_dy[e] * VOX_S;
-      }
+      const int inside = vox_coverage_next(&coverage, edge);
       if (inside) {
         const uint bit = 1u << (i & 31);
 #if VOX_SOLID_ODD

@@ -114,4 +114,45 @@ inline uint vox_row_blocks(const VoxTri* t, uint rows_per_copy) {
   return (uint)(t->last[1] - t->first[1]) / rows_per_copy + 1;
 }
 
+/* The centre rule's coverage of column centres ((i+1/2) S, (j+1/2) S) by the triangle's projection on the
+ * slicing plane: edge functions of the projected edges in counter-clockwise order, with the top-left rule's
+ * bias so that a centre on an edge shared by two triangles belongs to exactly one of them. Shared by every
+ * kernel that samples column centres (vox_scanline.h's centre mode, slicemap_raster.cl, vox_solid_cross.cl). */
+typedef struct VoxCoverage {
+  long px[3], py[3]; /* projected vertices, counter-clockwise */
+  long dx[3], dy[3]; /* edge e runs from vertex e to vertex e+1 */
+  long bias[3];      /* 0 for top and left edges: a centre exactly on them is inside */
+} VoxCoverage;
+
+inline void vox_coverage_init(VoxCoverage* c, const VoxTri* t) {
+  const int o1 = t->n[2] > 0 ? 1 : 2, o2 = t->n[2] > 0 ? 2 : 1;
+  const int order[3] = {0, o1, o2};
+  for (int e = 0; e < 3; ++e) {
+    c->px[e] = t->v[order[e]][0];
+    c->py[e] = t->v[order[e]][1];
+  }
+  for (int e = 0; e < 3; ++e) {
+    const int f = e == 2 ? 0 : e + 1;
+    c->dx[e] = c->px[f] - c->px[e];
+    c->dy[e] = c->py[f] - c->py[e];
+    c->bias[e] = (c->dy[e] < 0 || (c->dy[e] == 0 && c->dx[e] < 0)) ? 0 : 1;
+  }
+}
+
+/* Edge functions at the centre of column (i, j). */
+inline void vox_coverage_start(const VoxCoverage* c, int i, int j, long edge[3]) {
+  const long cx = (long)i * VOX_S + VOX_S / 2, cy = (long)j * VOX_S + VOX_S / 2;
+  for (int e = 0; e < 3; ++e) edge[e] = c->dx[e] * (cy - c->py[e]) - c->dy[e] * (cx - c->px[e]);
+}
+
+/* Whether the current centre is covered; then moves the edge functions one column along +x. */
+inline int vox_coverage_next(const VoxCoverage* c, long edge[3]) {
+  int inside = 1;
+  for (int e = 0; e < 3; ++e) {
+    inside &= edge[e] >= c->bias[e];
+    edge[e] -= c->dy[e] * VOX_S;
+  }
+  return inside;
+}
+
 #endif
