@@ -5,22 +5,13 @@
 #include <algorithm>
 
 #include "bench/bench_meshes.h"
+#include "bench/median.h"
 #include "core/mesh_topology.h"
 #include "voxelize/reference_inside.h"
 #include "voxelize/slice_voxelizer.h"
 #include "voxelize/solid_voxelizer.h"
 
 namespace voxr {
-
-namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-}  // namespace
 
 std::vector<SolidTableRow> run_solid_table(ClRuntime& cl, const SolidTableOptions& options) {
   std::vector<SolidTableRow> rows;

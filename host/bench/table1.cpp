@@ -6,6 +6,7 @@
 #include <map>
 
 #include "bench/bench_meshes.h"
+#include "bench/median.h"
 #include "core/error.h"
 #include "voxelize/slice_voxelizer.h"
 #include "voxelize/slicemap_voxelizer.h"
@@ -14,12 +15,6 @@
 namespace voxr {
 
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // One timed voxelization with the named method.
 VoxelGrid run_method(ClRuntime& cl, const Table1Options& table, const std::string& method,

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "bench/bench_meshes.h"
+#include "bench/median.h"
 #include "bench/solid_table.h"
 #include "bench/table1.h"
 #ifdef VOXR_WITH_OPENVDB
@@ -33,12 +34,6 @@ struct BenchArgs {
 
 const char* const kStages[] = {"clear",  "setup", "scan",       "expand",
                                "raster", "rank",  "attributes", "finalize"};
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 int run_bench_voxelize(const BenchArgs& args) {
   ClRuntime cl(args.device);

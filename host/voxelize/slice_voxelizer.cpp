@@ -42,17 +42,26 @@ cl::Buffer SliceVoxelizer::scratch(const std::string& what, uint64_t bytes) {
   return slot.buffer;
 }
 
-VoxelGrid SliceVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, const VoxelizeOptions& options,
-                              VoxelizeStats* stats) {
+void VoxelizeStats::record_times(const Profiler::Split& split, std::chrono::steady_clock::time_point start) {
+  upload_ms = split.upload_ms;
+  readback_ms = split.readback_ms;
+  kernels_ms = split.kernels_ms;
+  stage_ms = split.stage_ms;
+  wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+VoxelGrid upload_and_voxelize(ClRuntime& cl, const TriangleSoup& soup, const GridSpec& grid,
+                              VoxelizeStats* stats,
+                              const std::function<VoxelGrid(const DeviceMesh&)>& voxelize) {
   const auto start = std::chrono::steady_clock::now();
   uint64_t split = 0;
   const std::optional<TriangleSoup> pieces = split_oversized_triangles(soup, grid, &split);
-  cl_.finish();
-  const auto before = cl_.profiler().stats();
-  const DeviceMesh mesh(cl_, pieces ? *pieces : soup);
-  cl_.finish("uploading the mesh");
-  const double upload_ms = cl_.profiler().since(before).upload_ms;
-  VoxelGrid result = run(mesh, grid, options, stats);
+  cl.finish();
+  const auto before = cl.profiler().stats();
+  const DeviceMesh mesh(cl, pieces ? *pieces : soup);
+  cl.finish("uploading the mesh");
+  const double upload_ms = cl.profiler().since(before).upload_ms;
+  VoxelGrid result = voxelize(mesh);
   if (stats) {
     stats->triangles_split = split;
     stats->upload_ms = upload_ms;
@@ -60,6 +69,12 @@ VoxelGrid SliceVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, co
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
   return result;
+}
+
+VoxelGrid SliceVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, const VoxelizeOptions& options,
+                              VoxelizeStats* stats) {
+  return upload_and_voxelize(cl_, soup, grid, stats,
+                             [&](const DeviceMesh& mesh) { return run(mesh, grid, options, stats); });
 }
 
 VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
@@ -216,13 +231,7 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
     stats->batches = batches;
     stats->voxels_set = out.voxels_set;
     stats->device_bytes = device_bytes;
-    const Profiler::Split split = cl_.profiler().since(before);
-    stats->upload_ms = split.upload_ms;
-    stats->readback_ms = split.readback_ms;
-    stats->kernels_ms = split.kernels_ms;
-    stats->stage_ms = split.stage_ms;
-    stats->wall_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats->record_times(cl_.profiler().since(before), start);
   }
   return out;
 }

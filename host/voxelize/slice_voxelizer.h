@@ -6,6 +6,7 @@
 // Copies beyond the memory budget are expanded and rasterized in batches.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -46,6 +47,8 @@ struct VoxelizeStats {
   double wall_ms = 0.0;                    // host clock around the whole run, including waits
   std::map<std::string, double> stage_ms;  // per kernel stage
   double total_ms() const { return upload_ms + kernels_ms + readback_ms; }
+  // Sets the profiled times from `split` and the wall time since `start`.
+  void record_times(const Profiler::Split& split, std::chrono::steady_clock::time_point start);
 };
 
 // Triangles uploaded once, voxelized any number of times (benchmarks time the kernels alone).
@@ -61,6 +64,12 @@ class DeviceMesh {
   cl::Buffer triangles_;
   uint32_t triangle_count_ = 0;
 };
+
+// Splits oversized triangles (triangle_splitter.h), uploads the soup and runs `voxelize` on it; `stats`
+// (optional) then also holds the split count, the upload time and the wall time of the whole.
+VoxelGrid upload_and_voxelize(ClRuntime& cl, const TriangleSoup& soup, const GridSpec& grid,
+                              VoxelizeStats* stats,
+                              const std::function<VoxelGrid(const DeviceMesh&)>& voxelize);
 
 class SliceVoxelizer {
  public:

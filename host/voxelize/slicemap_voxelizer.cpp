@@ -56,22 +56,9 @@ cl::Buffer SlicemapVoxelizer::scratch(const std::string& what, uint64_t bytes) {
 
 VoxelGrid SlicemapVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, SlicemapSlicing slicing,
                                  VoxelizeStats* stats, Slicemap* slicemap, const SlicemapOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  uint64_t split = 0;
-  const std::optional<TriangleSoup> pieces = split_oversized_triangles(soup, grid, &split);
-  cl_.finish();
-  const auto before = cl_.profiler().stats();
-  const DeviceMesh mesh(cl_, pieces ? *pieces : soup);
-  cl_.finish("uploading the mesh");
-  const double upload_ms = cl_.profiler().since(before).upload_ms;
-  VoxelGrid result = run(mesh, grid, slicing, stats, slicemap, options);
-  if (stats) {
-    stats->triangles_split = split;
-    stats->upload_ms = upload_ms;
-    stats->wall_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  }
-  return result;
+  return upload_and_voxelize(cl_, soup, grid, stats, [&](const DeviceMesh& mesh) {
+    return run(mesh, grid, slicing, stats, slicemap, options);
+  });
 }
 
 VoxelGrid SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, SlicemapSlicing slicing,
@@ -195,13 +182,7 @@ VoxelGrid SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, S
     stats->batches = batches;
     stats->voxels_set = out.voxels_set;
     stats->device_bytes = device_bytes;
-    const Profiler::Split split = cl_.profiler().since(before);
-    stats->upload_ms = split.upload_ms;
-    stats->readback_ms = split.readback_ms;
-    stats->kernels_ms = split.kernels_ms;
-    stats->stage_ms = split.stage_ms;
-    stats->wall_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats->record_times(cl_.profiler().since(before), start);
   }
   return out;
 }

@@ -43,7 +43,7 @@ namespace voxr {
 
 enum class SlicemapSlicing { kUniform, kLocal };
 
-const char* slicemap_slicing_name(SlicemapSlicing slicing);  // "uniform" | "local"
+const char* slicemap_slicing_name(SlicemapSlicing slicing);     // "uniform" | "local"
 SlicemapSlicing parse_slicemap_slicing(std::string_view name);  // throws voxr::Error naming a bad value
 
 // The raw slicemap as the kernels leave it (for tests and analysis; run() converts it to voxels).
