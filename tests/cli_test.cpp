@@ -172,7 +172,7 @@ TEST(Cli, SolidWritesTheInsideChannel) {
   EXPECT_GT(j["solid"]["inside_voxels"].get<uint64_t>(), 0u);
 }
 
-TEST(Cli, SolidOnAnOpenMeshWarnsAndFloods) {
+TEST(Cli, SolidParityOnAnOpenMeshWarnsAndFillsLate) {
   // The tetrahedron without its last face: open.
   const fs::path mesh =
       write_file("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n");
@@ -180,7 +180,7 @@ TEST(Cli, SolidOnAnOpenMeshWarnsAndFloods) {
                        (scratch() / "open.json").string());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("not closed"), std::string::npos) << r.err;
-  EXPECT_EQ(nlohmann::json::parse(slurp(scratch() / "open.json"))["solid"]["mode"], "flood");
+  EXPECT_EQ(nlohmann::json::parse(slurp(scratch() / "open.json"))["solid"]["mode"], "late");
 }
 
 TEST(Cli, InsideChannelNeedsSolid) {
