@@ -1,6 +1,6 @@
 /* slicemap_raster.cl — slicemap stage 3: rasterize one tile of a triangle's projection once, in 2D. Each
  * column centre ((i + 1/2) S, (j + 1/2) S) the triangle covers (top-left tie rule, exact 64-bit integers as
- * in vox_raster.cl's centre mode) is one fragment with the exact fixed-point depth zf = floor(S * z) of the
+ * in vox_scanline.h's centre mode) is one fragment with the exact fixed-point depth zf = floor(S * z) of the
  * triangle's plane there; fragments with zf outside [0, Z) (Z = dims.z * S) are dropped.
  *   SLICEMAP_PASS 0 (depth pre-pass, local slicing): per column atomic_max of (Z - zf) and of (zf + 1), so a
  *                   zero-filled buffer means "no fragment" and the column's near/far are exact integers.

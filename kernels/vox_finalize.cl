@@ -1,4 +1,4 @@
-/* vox_finalize.cl — unpacks the attribute accumulators of vox_raster.cl's second pass:
+/* vox_finalize.cl — unpacks the attribute accumulators of the second raster pass (vox_scanline.h):
  * acc[2r] = sum(n.x) + count * 2^32, acc[2r+1] = sum(n.y) + sum(n.z) * 2^32 (each sum below 2^31 in
  * magnitude), into the count, the fixed-point normal sum and the unit normal (zero where the sum cancels,
  * e.g. a voxel touched by both sides of a thin sheet). VOX_CHANNELS selects the outputs written.

@@ -1,5 +1,5 @@
-/* vox_triangle.h — one triangle in exact grid coordinates, shared by vox_setup.cl, vox_expand.cl and
- * vox_raster.cl (and mirrored by host/voxelize/reference_voxelizer.cpp).
+/* vox_triangle.h — one triangle in exact grid coordinates, shared by every voxelization kernel (setup,
+ * scanline, Grid, slicemap, solid) and mirrored on the host by host/voxelize/snapped_triangle.cpp.
  *
  * Vertices are transformed to grid units in float (no contraction, so the host reproduces them bit for
  * bit) and snapped to the 1/VOXR_SUBVOXEL lattice. Everything after the snap is 64-bit integer arithmetic.

@@ -5,7 +5,7 @@
 // B = dims.z, Z = B * S):
 //   column (i, j)  one per i < dims.x, j < dims.y; its slicemap is B bits, ceil(B / 32) uint words.
 //   fragment       triangle t covers the column centre ((i + 1/2) S, (j + 1/2) S) of its projection on the
-//                  slicing plane under the top-left tie rule (exactly vox_raster.cl's centre mode; a triangle
+//                  slicing plane under the top-left tie rule (exactly the centre mode of vox_scanline.h; a triangle
 //                  edge-on to z covers nothing). Its depth is zf = floor(S * z), z the exact depth (voxels)
 //                  of t's plane at the centre. Fragments with zf outside [0, Z) are outside the grid and
 //                  dropped everywhere (depth range and bits).

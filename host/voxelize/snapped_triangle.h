@@ -22,7 +22,7 @@ struct SnappedTriangle {
 glm::vec3 grid_coords(const std::array<float, 12>& world_to_grid, const glm::vec4& p);
 SnappedTriangle snap_triangle(const std::array<float, 12>& world_to_grid, const TriangleSoup& soup,
                               size_t triangle);
-// Fixed-point unit normal (VOXR_NORMAL_ONE per unit), bit-identical to vox_raster.cl's.
+// Fixed-point unit normal (VOXR_NORMAL_ONE per unit), bit-identical to vox_scanline.h's.
 std::array<int32_t, 3> fixed_normal(const SnappedTriangle& t);
 
 }  // namespace voxr
