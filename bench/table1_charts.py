@@ -46,7 +46,7 @@ def main():
         sys.exit(__doc__)
     rows = load(sys.argv[1])
     prefix = sys.argv[2]
-    device = rows[0]["device"] if rows else "?"
+    device = rows[0]["device"].split(" (")[0] if rows else "?"
     methods = list(dict.fromkeys(r["method"] for r in rows))
     models = list(dict.fromkeys(r["model"] for r in rows))
 
