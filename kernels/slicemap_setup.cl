@@ -29,11 +29,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void slicemap_setu
     __global int4* snapped, __global uint* tile_counts, __global uint2* tile_info, __global uint* too_large) {
   const uint t = get_global_id(0);
   if (t >= grid.triangle_count) return;
-  const uint4 indices = triangles[t];
   VoxTri tri;
-  vox_snap_triangle(&tri, &grid, positions, indices);
-  vox_derive(&tri, &grid);
-  vox_store_triangle(&tri, indices.w, snapped, t);
+  vox_prepare_triangle(&tri, &grid, positions, triangles, t, snapped);
   uint count = 0;
   uint2 info = (uint2)(0, 0);
   if (vox_triangle_active(&tri)) {

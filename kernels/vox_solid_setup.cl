@@ -26,11 +26,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_set
     __global int4* snapped, __global uint* item_counts, __global uint* too_large) {
   const uint t = get_global_id(0);
   if (t >= grid.triangle_count) return;
-  const uint4 indices = triangles[t];
   VoxTri tri;
-  vox_snap_triangle(&tri, &grid, positions, indices);
-  vox_derive(&tri, &grid);
-  vox_store_triangle(&tri, indices.w, snapped, t);
+  vox_prepare_triangle(&tri, &grid, positions, triangles, t, snapped);
   uint count = 0;
   /* Edge-on triangles (no projected area) cover no column centre. */
   if (tri.n[2] != 0 && tri.first[0] <= tri.last[0] && tri.first[1] <= tri.last[1]) {

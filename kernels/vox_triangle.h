@@ -95,6 +95,15 @@ inline void vox_derive(VoxTri* t, const VoxGridParams* grid) {
   }
 }
 
+/* The setup stages' common start: snap triangle t, derive its ranges and store it for the later stages. */
+inline void vox_prepare_triangle(VoxTri* t, const VoxGridParams* grid, __global const float4* positions,
+                                 __global const uint4* triangles, uint index, __global int4* snapped) {
+  const uint4 indices = triangles[index];
+  vox_snap_triangle(t, grid, positions, indices);
+  vox_derive(t, grid);
+  vox_store_triangle(t, indices.w, snapped, index);
+}
+
 /* Whether the triangle produces any copy: it reaches the grid and, for the centre rule, its projection
  * on the slicing plane has area (an edge-on triangle covers no pixel centre). */
 inline int vox_triangle_active(const VoxTri* t) {
