@@ -20,8 +20,11 @@ typedef uint32_t uint;
  * splits them before upload (host/voxelize/triangle_splitter.h). */
 #define VOXR_MAX_TRIANGLE_EXTENT 2040
 
-/* Normal sums are fixed point: each triangle adds its unit normal times VOXR_NORMAL_ONE. */
-#define VOXR_NORMAL_ONE 1024
+/* Normal sums are fixed point: each triangle adds its unit normal times VOXR_NORMAL_ONE. A voxel's sums are
+ * packed into 32-bit halves (vox_scanline.h), which stay exact while at most VOXR_MAX_ATTRIBUTE_TRIANGLES
+ * triangles write one voxel; the host refuses count/normal for meshes with more triangles than that. */
+#define VOXR_NORMAL_ONE 256
+#define VOXR_MAX_ATTRIBUTE_TRIANGLES ((1u << 23) - 1u)
 
 /* Rasterization rules. */
 #define VOXR_MODE_CONSERVATIVE 0 /* every voxel whose closed box the closed triangle touches */

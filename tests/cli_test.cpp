@@ -190,3 +190,64 @@ TEST(Cli, InsideChannelNeedsSolid) {
 }
 
 }  // namespace
+
+namespace {
+
+const std::string kCube =
+    "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n"
+    "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 "
+    "8 6\n";
+
+uint64_t inside_voxels(const std::string& args, const std::string& name) {
+  const fs::path report = scratch() / (name + ".json");
+  const Result r = run(args + " -q --report " + report.string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  return nlohmann::json::parse(slurp(report))["solid"]["inside_voxels"].get<uint64_t>();
+}
+
+TEST(Cli, SolidKeepsCrossingsOfSplitTrianglesOutsideTheGrid) {
+  // A thin column inside a cube, so deep that the cube's faces are split: the faces below (and, for late
+  // filling, above) the grid must still count.
+  const fs::path cube = write_file("cube.obj", kCube);
+  const std::string inner = "voxelize " + cube.string() +
+                            " --dims 2,2,2000 --bounds -0.00025,-0.00025,-0.25,"
+                            "0.00025,0.00025,0.25";
+  for (const char* mode : {"parity", "xor", "late"})
+    EXPECT_EQ(inside_voxels(inner + " --solid " + mode, mode), 8000u) << mode;
+  const std::string top = "voxelize " + cube.string() +
+                          " --dims 2,2,2000 --bounds -0.00025,-0.00025,-1.01,"
+                          "0.00025,0.00025,-0.51";
+  EXPECT_EQ(inside_voxels(top + " --solid late", "late-top"),
+            inside_voxels(top + " --solid parity", "parity-top"));
+}
+
+TEST(Cli, SolidBinvoxHoldsTheSolid) {
+  const fs::path cube = write_file("cube2.obj", kCube);
+  const fs::path out = scratch() / "solid.binvox";
+  const uint64_t inside = inside_voxels(
+      "voxelize " + cube.string() + " --dims 16,16,16 --solid parity -o " + out.string(), "binvox");
+  const std::string data = slurp(out);
+  const size_t start = data.find("data\n") + 5;
+  uint64_t set = 0;
+  for (size_t p = start; p + 1 < data.size(); p += 2) set += data[p] ? uint8_t(data[p + 1]) : 0;
+  EXPECT_GT(inside, 0u);
+  EXPECT_EQ(set, inside);
+}
+
+TEST(Cli, HugeDeviceIndexIsNotACrash) {
+  const Result r = run("voxelize --res 8 --device 99999999999999:0");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("no OpenCL device matches"), std::string::npos) << r.err;
+}
+
+TEST(Cli, FormatErrorsComeBeforeTheWork) {
+  const fs::path mesh = write_file("tetra9.obj", kTetra);
+  expect_one_line_error(
+      run("voxelize " + mesh.string() + " --dims 300,300,300 -o " + (scratch() / "big.vox").string()),
+      "at most 256");
+  expect_one_line_error(run("voxelize " + mesh.string() + " --report /nonexistent-folder/r.json"),
+                        "/nonexistent-folder/r.json");
+  expect_one_line_error(run("bench voxelize --meshes torus --res 8 --channels occ,inside"), "inside");
+}
+
+}  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cstdlib>
 
 #include "cl/cl_error.h"
@@ -26,7 +27,11 @@ bool is_index(const std::string& s) {
 
 bool matches(const std::string& part, int index, const std::string& name) {
   if (part.empty()) return true;
-  if (is_index(part)) return std::stoi(part) == index;
+  if (is_index(part)) {
+    int value = -1;
+    const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), value);
+    return error == std::errc() && end == part.data() + part.size() && value == index;
+  }
   return lower(name).find(lower(part)) != std::string::npos;
 }
 

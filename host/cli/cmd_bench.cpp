@@ -40,6 +40,8 @@ int run_bench_voxelize(const BenchArgs& args) {
   VoxelizeOptions options;
   options.mode = parse_raster_mode(args.mode);
   options.channels = ChannelSet::parse(args.channels);
+  if (options.channels.has(Channel::kInside))
+    fail("--channels inside comes from solid fill: use voxr bench solid");
   SliceVoxelizer voxelizer(cl);
 
   std::string csv = "device,driver,mesh,triangles,res,dims,mode,channels,copies,voxels,repeats";

@@ -106,7 +106,7 @@ nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const 
 
 int run_voxelize(const VoxelizeArgs& args) {
   if (args.res && !args.dims.empty()) fail("--res and --dims are exclusive; give one");
-  if (!args.output.empty()) check_output_path(args.output);
+  if (!args.report.empty()) check_output_path(args.report);
   const std::filesystem::path viewer = args.view ? find_viewer(args.output) : std::filesystem::path();
   const Scene scene = args.input.empty() ? default_scene() : load_input(args.input);
   const TriangleSoup soup = scene_triangles(scene);
@@ -120,6 +120,7 @@ int run_voxelize(const VoxelizeArgs& args) {
   if (!args.dims.empty()) request.dims = parse_dims(args.dims, "--dims");
   if (!args.bounds.empty()) request.bounds = parse_bounds(args.bounds, "--bounds");
   const GridSpec grid = fit_grid(soup.bounds(), request);
+  if (!args.output.empty()) check_volume_output(args.output, grid.dims);
 
   VoxelizeOptions options;
   const bool slicemap = args.method == "slicemap";

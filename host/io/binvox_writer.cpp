@@ -68,12 +68,16 @@ class RunWriter {
 
 }  // namespace
 
+void check_binvox_dims(const fs::path& out, const glm::uvec3& dims) {
+  if (dims.x != dims.y || dims.y != dims.z)
+    fail("{}: binvox holds cubic grids only, this grid is {}x{}x{}; write .nrrd or .vti instead",
+         out.string(), dims.x, dims.y, dims.z);
+}
+
 fs::path write_binvox(const VoxelGrid& grid, const fs::path& out) {
   check_output_path(out);
   const GridSpec& spec = grid.spec;
-  if (spec.dims.x != spec.dims.y || spec.dims.y != spec.dims.z)
-    fail("{}: binvox holds cubic grids only, this grid is {}x{}x{}; write .nrrd or .vti instead",
-         out.string(), spec.dims.x, spec.dims.y, spec.dims.z);
+  check_binvox_dims(out, spec.dims);
   check_grid_layout(grid);
   const uint64_t d = spec.dims.x;
 

@@ -15,5 +15,7 @@ namespace voxr {
 // Writes `grid` to `out` and returns `out`. Throws voxr::Error naming `out` for a non-cubic grid or a
 // failed write.
 std::filesystem::path write_binvox(const VoxelGrid& grid, const std::filesystem::path& out);
+// Throws voxr::Error naming `out` unless binvox can hold a grid of `dims` (cubic).
+void check_binvox_dims(const std::filesystem::path& out, const glm::uvec3& dims);
 
 }  // namespace voxr

@@ -19,17 +19,45 @@ namespace voxr {
 
 namespace fs = std::filesystem;
 
-std::vector<fs::path> write_volume(const VoxelGrid& grid, const fs::path& out) {
+namespace {
+
+enum class Format { kNrrd, kVti, kBinvox, kVox };
+
+Format volume_format(const fs::path& out) {
   std::string ext = out.extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".nrrd") return write_nrrd(grid, out);
-  if (ext == ".vti") return {write_vti(grid, out)};
-  if (ext == ".binvox") return {write_binvox(grid, out)};
-  if (ext == ".vox") return {write_vox(grid, out)};
+  if (ext == ".nrrd") return Format::kNrrd;
+  if (ext == ".vti") return Format::kVti;
+  if (ext == ".binvox") return Format::kBinvox;
+  if (ext == ".vox") return Format::kVox;
   if (ext.empty())
     fail("{}: no extension to choose the volume format by (.nrrd, .vti, .binvox, .vox)", out.string());
   fail("{}: unknown volume format '{}' (formats: .nrrd, .vti, .binvox, .vox)", out.string(),
        out.extension().string());
+}
+
+}  // namespace
+
+std::vector<fs::path> write_volume(const VoxelGrid& grid, const fs::path& out) {
+  switch (volume_format(out)) {
+    case Format::kNrrd:
+      return write_nrrd(grid, out);
+    case Format::kVti:
+      return {write_vti(grid, out)};
+    // The single-set formats get the solid (surface and interior) when there is one.
+    case Format::kBinvox:
+      return {write_binvox(grid.inside.empty() ? grid : solid_occupancy(grid), out)};
+    case Format::kVox:
+      return {write_vox(grid.inside.empty() ? grid : solid_occupancy(grid), out)};
+  }
+  throw InternalError("unhandled volume format");
+}
+
+void check_volume_output(const fs::path& out, const glm::uvec3& dims) {
+  check_output_path(out);
+  const Format format = volume_format(out);
+  if (format == Format::kBinvox) check_binvox_dims(out, dims);
+  if (format == Format::kVox) check_vox_dims(out, dims);
 }
 
 void check_output_path(const fs::path& out) {

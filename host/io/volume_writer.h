@@ -25,6 +25,10 @@ std::vector<std::filesystem::path> write_volume(const VoxelGrid& grid, const std
 
 // ---- Shared by the format writers ----------------------------------------------------------------------
 
+// Everything write_volume would refuse before any work is done: folder, extension, grid size the format can
+// hold. Throws voxr::Error naming `out`.
+void check_volume_output(const std::filesystem::path& out, const glm::uvec3& dims);
+
 // Throws voxr::Error naming `out` when its folder does not exist or `out` is a folder.
 void check_output_path(const std::filesystem::path& out);
 

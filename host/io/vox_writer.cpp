@@ -64,15 +64,19 @@ std::array<uint8_t, 4> palette_colour(uint32_t c) {
 
 }  // namespace
 
-fs::path write_vox(const VoxelGrid& grid, const fs::path& out) {
-  check_output_path(out);
-  const GridSpec& spec = grid.spec;
+void check_vox_dims(const fs::path& out, const glm::uvec3& dims) {
   for (int a = 0; a < 3; ++a)
-    if (spec.dims[a] > kVoxMaxDim)
+    if (dims[a] > kVoxMaxDim)
       fail(
           "{}: MagicaVoxel .vox holds at most {} voxels per axis, the grid has {} along {} ({}x{}x{}); "
           "write .nrrd or .vti instead",
-          out.string(), kVoxMaxDim, spec.dims[a], "xyz"[a], spec.dims.x, spec.dims.y, spec.dims.z);
+          out.string(), kVoxMaxDim, dims[a], "xyz"[a], dims.x, dims.y, dims.z);
+}
+
+fs::path write_vox(const VoxelGrid& grid, const fs::path& out) {
+  check_output_path(out);
+  const GridSpec& spec = grid.spec;
+  check_vox_dims(out, spec.dims);
   check_grid_layout(grid);
 
   const bool has_material = grid.channels.has(Channel::kMaterial);

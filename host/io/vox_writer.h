@@ -21,6 +21,8 @@ constexpr uint32_t kVoxMaxDim = 256;
 // Writes `grid` to `out` and returns `out`. Throws voxr::Error naming `out` and the axis when an axis
 // exceeds 256 voxels, or on a failed write.
 std::filesystem::path write_vox(const VoxelGrid& grid, const std::filesystem::path& out);
+// Throws voxr::Error naming `out` unless .vox can hold a grid of `dims` (at most 256 per axis).
+void check_vox_dims(const std::filesystem::path& out, const glm::uvec3& dims);
 
 // voxr voxel (i, j, k) of a grid of `dims` -> MagicaVoxel coordinates (see above).
 inline glm::uvec3 vox_coords(const glm::uvec3& ijk, const glm::uvec3& dims) {

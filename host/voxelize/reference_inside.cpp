@@ -31,7 +31,7 @@ i128 ceil_div(i128 a, i128 b) {
 
 // The kernels' input: the soup with oversized triangles split (see triangle_splitter.h).
 TriangleSoup solid_input(const TriangleSoup& soup, const GridSpec& grid) {
-  std::optional<TriangleSoup> pieces = split_oversized_triangles(soup, grid);
+  std::optional<TriangleSoup> pieces = split_oversized_triangles(soup, grid, nullptr, SplitCull::kColumns);
   return pieces ? std::move(*pieces) : soup;
 }
 

@@ -172,6 +172,11 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
     out.voxels_set = set;
     // Count and normal sums accumulate packed in two 64-bit words per voxel (see vox_raster.cl).
     const bool packed = options.channels.has(Channel::kCount) || options.channels.has(Channel::kNormal);
+    if (packed && tris > VOXR_MAX_ATTRIBUTE_TRIANGLES)
+      fail(
+          "{} triangles are more than the {} the packed count/normal sums hold exactly; drop count,normal or "
+          "split the mesh",
+          tris, VOXR_MAX_ATTRIBUTE_TRIANGLES);
     if (packed && cl_.device().extensions.find("cl_khr_int64_base_atomics") == std::string::npos)
       fail("{} lacks cl_khr_int64_base_atomics, which the count and normal channels need",
            cl_.device().label());

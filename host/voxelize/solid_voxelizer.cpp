@@ -96,7 +96,8 @@ VoxelGrid SolidVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, So
 
 void SolidVoxelizer::run_crossings(const TriangleSoup& soup, const GridSpec& grid, SolidMode mode,
                                    cl::Buffer& padded, SolidStats& stats) {
-  const std::optional<TriangleSoup> pieces = split_oversized_triangles(soup, grid);
+  const std::optional<TriangleSoup> pieces =
+      split_oversized_triangles(soup, grid, nullptr, SplitCull::kColumns);
   const DeviceMesh mesh(cl_, pieces ? *pieces : soup);
   cl_.finish("uploading the mesh");
   const auto before = cl_.profiler().stats();

@@ -13,9 +13,15 @@ namespace voxr {
 // Extent (voxels) above which a triangle is split; below VOXR_MAX_TRIANGLE_EXTENT with room for rounding.
 constexpr float kSplitExtentVoxels = 2000.0f;
 
-// The soup with oversized triangles replaced by their pieces, or nothing when no triangle is too large.
-// `split` receives the number of input triangles that were split.
+// Which pieces may be dropped. kGrid (surface voxelization): pieces that miss the grid. kColumns (solid
+// fill, which counts every crossing of a column, also below and above the grid): only pieces that miss the
+// grid's columns; triangles wholly below or above the grid are moved onto a plane half a voxel outside it.
+enum class SplitCull { kGrid, kColumns };
+
+// The soup with oversized triangles replaced by their pieces (and, for kColumns, far triangles flattened),
+// or nothing when no triangle needs it. `split` receives the number of input triangles changed.
 std::optional<TriangleSoup> split_oversized_triangles(const TriangleSoup& soup, const GridSpec& grid,
-                                                      uint64_t* split = nullptr);
+                                                      uint64_t* split = nullptr,
+                                                      SplitCull cull = SplitCull::kGrid);
 
 }  // namespace voxr

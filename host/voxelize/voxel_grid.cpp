@@ -1,5 +1,7 @@
 #include "voxelize/voxel_grid.h"
 
+#include <bit>
+
 #include "core/error.h"
 
 namespace voxr {
@@ -11,11 +13,16 @@ constexpr Channel kAllChannels[] = {Channel::kOcc, Channel::kCount, Channel::kNo
 
 const char* channel_name(Channel c) {
   switch (c) {
-    case Channel::kOcc: return "occ";
-    case Channel::kCount: return "count";
-    case Channel::kNormal: return "normal";
-    case Channel::kMaterial: return "material";
-    case Channel::kInside: return "inside";
+    case Channel::kOcc:
+      return "occ";
+    case Channel::kCount:
+      return "count";
+    case Channel::kNormal:
+      return "normal";
+    case Channel::kMaterial:
+      return "material";
+    case Channel::kInside:
+      return "inside";
   }
   return "?";
 }
@@ -46,6 +53,15 @@ std::string ChannelSet::to_string() const {
 
 void expand_bits(const std::vector<uint32_t>& bits, uint64_t begin, uint64_t end, uint8_t* out) {
   for (uint64_t l = begin; l < end; ++l) *out++ = uint8_t((bits[l >> 5] >> (l & 31)) & 1u);
+}
+
+VoxelGrid solid_occupancy(const VoxelGrid& grid) {
+  VoxelGrid out;
+  out.spec = grid.spec;
+  out.occ = grid.occ;
+  for (size_t w = 0; w < grid.inside.size(); ++w) out.occ[w] |= grid.inside[w];
+  for (uint32_t w : out.occ) out.voxels_set += uint64_t(std::popcount(w));
+  return out;
 }
 
 }  // namespace voxr

@@ -36,6 +36,11 @@ struct ChannelSet {
 
 const char* channel_name(Channel c);
 
+struct VoxelGrid;
+// The solid as one occupancy set (surface bits or interior bits), for the formats that hold a single set
+// (.binvox, .vox): occ = occ | inside, no other channels.
+VoxelGrid solid_occupancy(const VoxelGrid& grid);
+
 struct VoxelGrid {
   GridSpec spec;
   ChannelSet channels;
@@ -43,10 +48,10 @@ struct VoxelGrid {
   uint64_t voxels_set = 0;
 
   // Sparse attributes, voxels_set entries each when the channel was requested, else empty.
-  std::vector<uint32_t> count;        // triangles that wrote the voxel
-  std::vector<glm::ivec3> normal_sum; // fixed point, kNormalOne per unit normal of each triangle
-  std::vector<glm::vec3> normal;      // normalized normal_sum (zero where the sum cancels)
-  std::vector<uint32_t> material;     // largest material id among the triangles that wrote the voxel
+  std::vector<uint32_t> count;         // triangles that wrote the voxel
+  std::vector<glm::ivec3> normal_sum;  // fixed point, kNormalOne per unit normal of each triangle
+  std::vector<glm::vec3> normal;       // normalized normal_sum (zero where the sum cancels)
+  std::vector<uint32_t> material;      // largest material id among the triangles that wrote the voxel
 
   // Dense interior bits, laid out like occ, when channels has kInside (else empty): voxels whose centre a
   // solid mode judges inside (host/voxelize/solid_voxelizer.h).
