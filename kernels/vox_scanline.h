@@ -97,8 +97,9 @@ typedef struct VoxWriter {
   __global const ulong* ranked; /* pass 1: (rank of the word's first set voxel << 32) | occupancy word */
   __global long* acc;
   __global uint* material;
-  ulong word;
+  ulong word;        /* pass 0: the word being collected; pass 1: the word of word_ranked */
   uint mask;
+  ulong word_ranked; /* pass 1: ranked[word] */
   int normal[3];
   uint material_id;
 } VoxWriter;
@@ -122,13 +123,17 @@ inline void vox_emit(VoxWriter* w, ulong linear) {
   }
   w->mask |= bit;
 #else
-  const ulong ranked = w->ranked[word];
-  const ulong rank = (ranked >> 32) + popcount((uint)ranked & (bit - 1u));
+  if (word != w->word) { /* voxels along a row share their ranked word */
+    w->word = word;
+    w->word_ranked = w->ranked[word];
+  }
+  const ulong rank = (w->word_ranked >> 32) + popcount((uint)w->word_ranked & (bit - 1u));
 #if VOX_CHANNELS & (VOX_CH_COUNT | VOX_CH_NORMAL)
   atom_add(w->acc + 2 * rank, (long)w->normal[0] + (1L << 32));
 #endif
 #if VOX_CHANNELS & VOX_CH_NORMAL
-  atom_add(w->acc + 2 * rank + 1, (long)w->normal[1] + ((long)w->normal[2] << 32));
+  /* A multiplication, not a shift: shifting a negative value left is undefined in OpenCL C. */
+  atom_add(w->acc + 2 * rank + 1, (long)w->normal[1] + (long)w->normal[2] * (1L << 32));
 #endif
 #if VOX_CHANNELS & VOX_CH_MATERIAL
   atomic_max(w->material + rank, w->material_id);
