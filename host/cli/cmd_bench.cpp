@@ -110,6 +110,26 @@ std::vector<std::string> default_table1_methods() {
   return methods;
 }
 
+void print_line(const std::string& line) {
+  fmt::print("{}\n", line);
+  std::fflush(stdout);
+}
+
+std::string device_description(const ClRuntime& cl) {
+  return fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name,
+                     cl.device().driver_version);
+}
+
+// Writes PREFIX + each extension's text and says so.
+void write_report(const std::string& prefix, const std::vector<std::pair<std::string, std::string>>& files) {
+  for (const auto& [ext, text] : files) {
+    std::ofstream out(prefix + ext);
+    out << text;
+    if (!out) fail("{}{}: cannot write", prefix, ext);
+    fmt::print("wrote {}{}\n", prefix, ext);
+  }
+}
+
 struct Table1Args {
   std::vector<std::string> models;  // LABEL=MESH or MESH; empty: the papers' six sizes
   std::vector<uint32_t> resolutions = {128, 256, 512};
@@ -141,21 +161,11 @@ int run_bench_table1(const Table1Args& args) {
   options.repeat = args.repeat;
   options.warmup = args.warmup;
   options.accuracy = !args.no_accuracy;
-  options.progress = [](const std::string& line) {
-    fmt::print("{}\n", line);
-    std::fflush(stdout);
-  };
-  const std::string device = fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name,
-                                         cl.device().driver_version);
+  options.progress = print_line;
+  const std::string device = device_description(cl);
   fmt::print("device: {}\n", device);
   const std::vector<Table1Row> rows = run_table1(cl, options);
-  for (const auto& [ext, text] :
-       {std::pair{".csv", table1_csv(rows, device)}, std::pair{".md", table1_markdown(rows, device)}}) {
-    std::ofstream out(args.out + ext);
-    out << text;
-    if (!out) fail("{}{}: cannot write", args.out, ext);
-    fmt::print("wrote {}{}\n", args.out, ext);
-  }
+  write_report(args.out, {{".csv", table1_csv(rows, device)}, {".md", table1_markdown(rows, device)}});
   return 0;
 }
 
@@ -168,21 +178,12 @@ struct SolidArgs {
 int run_bench_solid(const SolidArgs& args) {
   ClRuntime cl(args.device);
   SolidTableOptions options = args.options;
-  options.progress = [](const std::string& line) {
-    fmt::print("{}\n", line);
-    std::fflush(stdout);
-  };
-  const std::string device = fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name,
-                                         cl.device().driver_version);
+  options.progress = print_line;
+  const std::string device = device_description(cl);
   fmt::print("device: {}\n", device);
   const std::vector<SolidTableRow> rows = run_solid_table(cl, options);
-  for (const auto& [ext, text] : {std::pair{".csv", solid_table_csv(rows, device)},
-                                  std::pair{".md", solid_table_markdown(rows, device)}}) {
-    std::ofstream out(args.out + ext);
-    out << text;
-    if (!out) fail("{}{}: cannot write", args.out, ext);
-    fmt::print("wrote {}{}\n", args.out, ext);
-  }
+  write_report(args.out,
+               {{".csv", solid_table_csv(rows, device)}, {".md", solid_table_markdown(rows, device)}});
   return 0;
 }
 
