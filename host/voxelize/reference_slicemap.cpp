@@ -1,5 +1,7 @@
 #include "voxelize/reference_slicemap.h"
 
+#include "voxelize/reference_voxelizer.h"
+
 #include <algorithm>
 #include <bit>
 #include <limits>
@@ -47,18 +49,9 @@ void for_each_fragment(const TriangleSoup& soup, const GridSpec& grid, Fn&& fn) 
 }  // namespace
 
 std::optional<int64_t> reference_fragment_depth(const SnappedTriangle& t, int64_t i, int64_t j) {
+  if (!reference_center_covers(t, i, j)) return std::nullopt;
   const i128 nz = t.n[2];
-  if (nz == 0) return std::nullopt;
   const i128 cx = i * S + S / 2, cy = j * S + S / 2;
-  const int order[3] = {0, nz > 0 ? 1 : 2, nz > 0 ? 2 : 1};
-  for (int e = 0; e < 3; ++e) {
-    const auto& a = t.v[order[e]];
-    const auto& b = t.v[order[(e + 1) % 3]];
-    const i128 dx = b[0] - a[0], dy = b[1] - a[1];
-    const i128 w = dx * (cy - a[1]) - dy * (cx - a[0]);
-    const bool top_left = dy < 0 || (dy == 0 && dx < 0);
-    if (w < 0 || (w == 0 && !top_left)) return std::nullopt;
-  }
   // The plane n . (p - v0) = 0 at the centre: z * nz = v0z * nz - n.x (cx - v0x) - n.y (cy - v0y).
   const i128 z_times_nz =
       i128(t.v[0][2]) * nz - i128(t.n[0]) * (cx - t.v[0][0]) - i128(t.n[1]) * (cy - t.v[0][1]);

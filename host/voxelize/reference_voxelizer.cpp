@@ -54,7 +54,7 @@ bool reference_conservative_overlap(const SnappedTriangle& t, int64_t i, int64_t
   return true;
 }
 
-bool reference_center_crossing(const SnappedTriangle& t, int64_t i, int64_t j, int64_t* k) {
+bool reference_center_covers(const SnappedTriangle& t, int64_t i, int64_t j) {
   const i128 nz = t.n[2];
   if (nz == 0) return false;  // edge-on: the projection covers no centre
   const i128 cx = i * S + S / 2, cy = j * S + S / 2;
@@ -68,6 +68,13 @@ bool reference_center_crossing(const SnappedTriangle& t, int64_t i, int64_t j, i
     const bool top_left = dy < 0 || (dy == 0 && dx < 0);
     if (w < 0 || (w == 0 && !top_left)) return false;
   }
+  return true;
+}
+
+bool reference_center_crossing(const SnappedTriangle& t, int64_t i, int64_t j, int64_t* k) {
+  if (!reference_center_covers(t, i, j)) return false;
+  const i128 nz = t.n[2];
+  const i128 cx = i * S + S / 2, cy = j * S + S / 2;
   // The plane's depth at the centre is z = v0z + num / nz, so z * nz = v0z * nz + num; the cell is
   // floor(z / S) = floor(z_times_nz / (nz * S)).
   const i128 num = -(i128(t.n[0]) * (cx - t.v[0][0]) + i128(t.n[1]) * (cy - t.v[0][1]));

@@ -18,6 +18,9 @@ VoxelGrid reference_voxelize(const TriangleSoup& soup, const GridSpec& grid, Ras
 // The single-voxel predicates, exposed for tests.
 bool reference_conservative_overlap(const SnappedTriangle& t, int64_t i, int64_t j, int64_t k);
 bool reference_center_hit(const SnappedTriangle& t, int64_t i, int64_t j, int64_t k);
+// Whether the centre of column (i, j) lies inside the triangle's projection on the slicing plane (top-left
+// ties; an edge-on triangle covers nothing).
+bool reference_center_covers(const SnappedTriangle& t, int64_t i, int64_t j);
 // Whether the z-line through the centre of column (i, j) crosses the triangle under the centre rule (top-left
 // ties), and the slab k containing the crossing (a crossing on a slab boundary belongs to the slab above).
 bool reference_center_crossing(const SnappedTriangle& t, int64_t i, int64_t j, int64_t* k);

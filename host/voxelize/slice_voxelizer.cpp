@@ -31,17 +31,6 @@ DeviceMesh::DeviceMesh(ClRuntime& cl, const TriangleSoup& soup) {
   cl.upload(triangles_, soup.triangles.data(), tri_bytes, "upload triangles");
 }
 
-cl::Buffer SliceVoxelizer::scratch(const std::string& what, uint64_t bytes) {
-  bytes = std::max<uint64_t>(bytes, 4);  // OpenCL has no empty buffers
-  Scratch& slot = scratch_[what];
-  if (slot.bytes < bytes) {
-    slot.buffer = cl::Buffer();  // release the old one first
-    slot.buffer = cl_.buffer(bytes, what);
-    slot.bytes = bytes;
-  }
-  return slot.buffer;
-}
-
 void VoxelizeStats::record_times(const Profiler::Split& split, std::chrono::steady_clock::time_point start) {
   upload_ms = split.upload_ms;
   readback_ms = split.readback_ms;
@@ -102,7 +91,7 @@ VoxelGrid SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, cons
   uint64_t device_bytes = 0;
   auto alloc = [&](uint64_t bytes, const std::string& what) {
     device_bytes += bytes;
-    return scratch(what, bytes);
+    return scratch_.get(what, bytes);
   };
 
   progress("setup");

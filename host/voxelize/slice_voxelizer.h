@@ -13,6 +13,7 @@
 #include <string>
 
 #include "cl/cl_runtime.h"
+#include "cl/scratch_buffers.h"
 #include "core/grid_spec.h"
 #include "core/triangle_soup.h"
 #include "voxelize/raster_mode.h"
@@ -73,7 +74,7 @@ VoxelGrid upload_and_voxelize(ClRuntime& cl, const TriangleSoup& soup, const Gri
 
 class SliceVoxelizer {
  public:
-  explicit SliceVoxelizer(ClRuntime& cl) : cl_(cl) {}
+  explicit SliceVoxelizer(ClRuntime& cl) : cl_(cl), scratch_(cl) {}
 
   // Uploads, voxelizes and reads back; stats (optional) receive counts and profiled times.
   VoxelGrid run(const TriangleSoup& soup, const GridSpec& grid, const VoxelizeOptions& options,
@@ -84,16 +85,8 @@ class SliceVoxelizer {
                 VoxelizeStats* stats = nullptr);
 
  private:
-  // Device scratch buffers kept between runs (grown when too small), so repeated voxelizations — frames,
-  // benchmark repeats — do not pay for allocation and first-touch page faults every time.
-  cl::Buffer scratch(const std::string& what, uint64_t bytes);
-
-  struct Scratch {
-    cl::Buffer buffer;
-    uint64_t bytes = 0;
-  };
   ClRuntime& cl_;
-  std::map<std::string, Scratch> scratch_;
+  ScratchBuffers scratch_;  // device buffers kept between runs
 };
 
 }  // namespace voxr

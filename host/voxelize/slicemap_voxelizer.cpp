@@ -43,17 +43,6 @@ uint64_t Slicemap::bits_set() const {
   return n;
 }
 
-cl::Buffer SlicemapVoxelizer::scratch(const std::string& what, uint64_t bytes) {
-  bytes = std::max<uint64_t>(bytes, 4);
-  Scratch& slot = scratch_[what];
-  if (slot.bytes < bytes) {
-    slot.buffer = cl::Buffer();
-    slot.buffer = cl_.buffer(bytes, what);
-    slot.bytes = bytes;
-  }
-  return slot.buffer;
-}
-
 VoxelGrid SlicemapVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, SlicemapSlicing slicing,
                                  VoxelizeStats* stats, Slicemap* slicemap, const SlicemapOptions& options) {
   return upload_and_voxelize(cl_, soup, grid, stats, [&](const DeviceMesh& mesh) {
@@ -93,7 +82,7 @@ VoxelGrid SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, S
   uint64_t device_bytes = 0;
   auto alloc = [&](uint64_t bytes, const std::string& what) {
     device_bytes += bytes;
-    return scratch(what, bytes);
+    return scratch_.get(what, bytes);
   };
 
   cl::Buffer bits = alloc(slicemap_words * 4, "the slicemap");

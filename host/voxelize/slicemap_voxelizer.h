@@ -5,10 +5,10 @@
 // B = dims.z, Z = B * S):
 //   column (i, j)  one per i < dims.x, j < dims.y; its slicemap is B bits, ceil(B / 32) uint words.
 //   fragment       triangle t covers the column centre ((i + 1/2) S, (j + 1/2) S) of its projection on the
-//                  slicing plane under the top-left tie rule (exactly the centre mode of vox_scanline.h; a triangle
-//                  edge-on to z covers nothing). Its depth is zf = floor(S * z), z the exact depth (voxels)
-//                  of t's plane at the centre. Fragments with zf outside [0, Z) are outside the grid and
-//                  dropped everywhere (depth range and bits).
+//                  slicing plane under the top-left tie rule (exactly the centre mode of vox_scanline.h; a
+//                  triangle edge-on to z covers nothing). Its depth is zf = floor(S * z), z the exact depth
+//                  (voxels) of t's plane at the centre. Fragments with zf outside [0, Z) are outside the grid
+//                  and dropped everywhere (depth range and bits).
 //   uniform        bit(zf) = floor(zf / S): the voxel slab [k, k+1) holding the depth. Bit b is voxel b, so
 //                  the uniform grid equals SliceVoxelizer's centre mode exactly.
 //   local          (scene-fitted) per column near = min zf, far = max zf over its fragments (depth pre-pass),
@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "cl/cl_runtime.h"
+#include "cl/scratch_buffers.h"
 #include "core/grid_spec.h"
 #include "core/triangle_soup.h"
 #include "voxelize/slice_voxelizer.h"
@@ -73,7 +74,7 @@ struct SlicemapOptions {
 
 class SlicemapVoxelizer {
  public:
-  explicit SlicemapVoxelizer(ClRuntime& cl) : cl_(cl) {}
+  explicit SlicemapVoxelizer(ClRuntime& cl) : cl_(cl), scratch_(cl) {}
 
   // Splits oversized triangles, uploads, voxelizes and reads back the occupancy grid (channels: occ).
   // stats: triangles, copies = (triangle, tile) raster records, batches, voxels_set, device_bytes,
@@ -88,15 +89,8 @@ class SlicemapVoxelizer {
                 const SlicemapOptions& options = {});
 
  private:
-  // Device buffers kept between runs (grown when too small), as in SliceVoxelizer.
-  cl::Buffer scratch(const std::string& what, uint64_t bytes);
-
-  struct Scratch {
-    cl::Buffer buffer;
-    uint64_t bytes = 0;
-  };
   ClRuntime& cl_;
-  std::map<std::string, Scratch> scratch_;
+  ScratchBuffers scratch_;  // device buffers kept between runs
 };
 
 }  // namespace voxr

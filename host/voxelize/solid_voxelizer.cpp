@@ -25,34 +25,15 @@ uint64_t slice_words_of(const GridSpec& grid) {
   return words;
 }
 
-bool is_prefixed(const std::string& name, const char* prefix) {
-  return name.rfind(prefix, 0) == 0;
-}
-
-// Profiled kernel milliseconds per name since `before`, uploads and readbacks left out.
+// Profiled kernel milliseconds since `before` (uploads and readbacks left out), stage names prefixed.
 void add_kernel_times(const Profiler& profiler, const std::map<std::string, Profiler::Stat>& before,
                       SolidStats& stats, const std::string& prefix = "") {
-  for (const auto& [name, s] : profiler.stats()) {
-    const auto it = before.find(name);
-    const double ms = s.total_ms - (it == before.end() ? 0.0 : it->second.total_ms);
-    if (ms <= 0.0 || is_prefixed(name, "upload") || is_prefixed(name, "readback")) continue;
-    stats.kernels_ms += ms;
-    stats.stage_ms[prefix + name] += ms;
-  }
+  const Profiler::Split split = profiler.since(before);
+  stats.kernels_ms += split.kernels_ms;
+  for (const auto& [name, ms] : split.stage_ms) stats.stage_ms[prefix + name] += ms;
 }
 
 }  // namespace
-
-cl::Buffer SolidVoxelizer::scratch(const std::string& what, uint64_t bytes) {
-  bytes = std::max<uint64_t>(bytes, 4);  // OpenCL has no empty buffers
-  Scratch& slot = scratch_[what];
-  if (slot.bytes < bytes) {
-    slot.buffer = cl::Buffer();  // release the old one first
-    slot.buffer = cl_.buffer(bytes, what);
-    slot.bytes = bytes;
-  }
-  return slot.buffer;
-}
 
 VoxelGrid SolidVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, SolidMode mode,
                               SolidStats* stats) {
@@ -70,7 +51,7 @@ VoxelGrid SolidVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, So
   out.spec = grid;
   out.channels.add(Channel::kInside);
   out.occ.assign(words, 0u);
-  cl::Buffer padded = scratch("the solid bits", padded_bytes);
+  cl::Buffer padded = scratch_.get("the solid bits", padded_bytes);
   if (mode == SolidMode::kFlood)
     run_flood(soup, grid, out, padded, local);
   else
@@ -80,7 +61,7 @@ VoxelGrid SolidVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, So
   const Defines defines = {{"WG_SIZE", std::to_string(kGroup)},
                            {"VOX_SOLID_INVERT", mode == SolidMode::kFlood ? "1" : "0"}};
   cl::Kernel unpack = cl_.kernel("vox_solid_unpack.cl", "vox_solid_unpack", defines);
-  cl::Buffer inside = scratch("the inside bits", words * 4);
+  cl::Buffer inside = scratch_.get("the inside bits", words * 4);
   cl_.launch("solid unpack", unpack, uint64_t(grid.dims.y) * grid.dims.z, kGroup, cl_uint(grid.dims.x),
              cl_uint(grid.dims.y), cl_uint(grid.dims.z), cl_uint(words_x), cl_uint(slice_words), padded,
              inside);
@@ -118,16 +99,16 @@ void SolidVoxelizer::run_crossings(const TriangleSoup& soup, const GridSpec& gri
   params.triangle_count = uint32_t(tris);
 
   const std::string group = std::to_string(kGroup), rows = std::to_string(kRowsPerItem);
-  cl::Buffer dummy = scratch("unused solid buffer", 4);
-  cl::Buffer odd = late ? scratch("the column parities", column_bytes) : dummy;
+  cl::Buffer dummy = scratch_.get("unused solid buffer", 4);
+  cl::Buffer odd = late ? scratch_.get("the column parities", column_bytes) : dummy;
   cl_.fill_zero(padded, padded_bytes, "solid clear");
   if (late) cl_.fill_zero(odd, column_bytes, "solid clear");
 
   if (tris > 0) {
-    cl::Buffer snapped = scratch("solid snapped triangles", tris * 48);
-    cl::Buffer counts = scratch("solid item counts", tris * 4);
-    cl::Buffer offsets = scratch("solid item offsets", tris * 8);
-    cl::Buffer too_large = scratch("solid split check", 4);
+    cl::Buffer snapped = scratch_.get("solid snapped triangles", tris * 48);
+    cl::Buffer counts = scratch_.get("solid item counts", tris * 4);
+    cl::Buffer offsets = scratch_.get("solid item offsets", tris * 8);
+    cl::Buffer too_large = scratch_.get("solid split check", 4);
     cl_.fill_zero(too_large, 4, "solid clear");
     cl::Kernel setup =
         cl_.kernel("vox_solid_setup.cl", "vox_solid_setup", {{"WG_SIZE", group}, {"VOX_SOLID_ROWS", rows}});
@@ -152,8 +133,8 @@ void SolidVoxelizer::run_crossings(const TriangleSoup& soup, const GridSpec& gri
                  odd);
   }
 
-  cl::Buffer resolved = late ? scratch("the resolved columns", column_bytes) : dummy;
-  cl::Buffer counter = scratch("solid counter", 4);
+  cl::Buffer resolved = late ? scratch_.get("the resolved columns", column_bytes) : dummy;
+  cl::Buffer counter = scratch_.get("solid counter", 4);
   cl_.fill_zero(counter, 4, "solid clear");
   cl::Kernel prefix = cl_.kernel("vox_solid_prefix.cl", "vox_solid_prefix",
                                  {{"WG_SIZE", group}, {"VOX_SOLID_LATE", late ? "1" : "0"}});
@@ -166,7 +147,7 @@ void SolidVoxelizer::run_crossings(const TriangleSoup& soup, const GridSpec& gri
     cl_.download(counter, &questionable, 4, "readback questionable columns");
     stats.questionable_columns = questionable;
     cl::Kernel repair = cl_.kernel("vox_solid_repair.cl", "vox_solid_repair", {{"WG_SIZE", group}});
-    cl::Buffer resolved_next = scratch("the resolved columns (next)", column_bytes);
+    cl::Buffer resolved_next = scratch_.get("the resolved columns (next)", column_bytes);
     for (cl_uint changed = questionable > 0; changed;) {
       cl_.fill_zero(counter, 4, "solid clear");
       cl_.launch("solid repair", repair, row_words, kGroup, cl_uint(nx), cl_uint(ny), cl_uint(nz),
@@ -196,13 +177,13 @@ void SolidVoxelizer::run_flood(const TriangleSoup& soup, const GridSpec& grid, V
   const cl_uint slice_words = cl_uint(slice_words_of(grid));
   const uint64_t words = (grid.voxel_count() + 31) / 32;
   const uint64_t padded_words = uint64_t(slice_words) * nz;
-  cl::Buffer occ = scratch("the surface bits", words * 4);
+  cl::Buffer occ = scratch_.get("the surface bits", words * 4);
   cl_.upload(occ, out.occ.data(), words * 4, "upload surface");
   cl_.finish("uploading the surface");
   const auto before = cl_.profiler().stats();
 
   const std::string group = std::to_string(kGroup);
-  cl::Buffer free_bits = scratch("the free voxels", padded_words * 4);
+  cl::Buffer free_bits = scratch_.get("the free voxels", padded_words * 4);
   cl::Kernel pack = cl_.kernel("vox_solid_pack.cl", "vox_solid_pack", {{"WG_SIZE", group}});
   cl_.launch("solid pack", pack, uint64_t(ny) * nz, kGroup, cl_uint(nx), cl_uint(ny), cl_uint(nz),
              cl_uint(words_x), slice_words, occ, free_bits, padded);
@@ -210,7 +191,7 @@ void SolidVoxelizer::run_flood(const TriangleSoup& soup, const GridSpec& grid, V
   cl::Kernel sweep_x = cl_.kernel("vox_solid_flood.cl", "vox_solid_flood_x", {{"WG_SIZE", group}});
   cl::Kernel sweep_y = cl_.kernel("vox_solid_flood.cl", "vox_solid_flood_y", {{"WG_SIZE", group}});
   cl::Kernel sweep_z = cl_.kernel("vox_solid_flood.cl", "vox_solid_flood_z", {{"WG_SIZE", group}});
-  cl::Buffer changed_flag = scratch("solid counter", 4);
+  cl::Buffer changed_flag = scratch_.get("solid counter", 4);
   for (cl_uint changed = 1; changed;) {
     cl_.fill_zero(changed_flag, 4, "solid clear");
     auto sweep = [&](const char* name, cl::Kernel& kernel, uint64_t lines) {

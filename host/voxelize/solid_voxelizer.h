@@ -36,6 +36,7 @@
 #include <string>
 
 #include "cl/cl_runtime.h"
+#include "cl/scratch_buffers.h"
 #include "core/grid_spec.h"
 #include "core/triangle_soup.h"
 #include "voxelize/slice_voxelizer.h"
@@ -56,7 +57,7 @@ struct SolidStats {
 
 class SolidVoxelizer {
  public:
-  explicit SolidVoxelizer(ClRuntime& cl) : cl_(cl), surface_(cl) {}
+  explicit SolidVoxelizer(ClRuntime& cl) : cl_(cl), surface_(cl), scratch_(cl) {}
 
   // Fills grid.inside (and grid.inside_voxels) with the voxels whose CENTRE the mode judges inside;
   // channels = occ + inside. grid.occ holds the conservative surface for kFlood and no voxel for the others
@@ -65,19 +66,14 @@ class SolidVoxelizer {
   VoxelGrid run(const TriangleSoup& soup, const GridSpec& grid, SolidMode mode, SolidStats* stats = nullptr);
 
  private:
-  cl::Buffer scratch(const std::string& what, uint64_t bytes);
   void run_crossings(const TriangleSoup& soup, const GridSpec& grid, SolidMode mode, cl::Buffer& padded,
                      SolidStats& stats);
   void run_flood(const TriangleSoup& soup, const GridSpec& grid, VoxelGrid& out, cl::Buffer& padded,
                  SolidStats& stats);
 
-  struct Scratch {
-    cl::Buffer buffer;
-    uint64_t bytes = 0;
-  };
   ClRuntime& cl_;
   SliceVoxelizer surface_;  // flood's conservative surface
-  std::map<std::string, Scratch> scratch_;
+  ScratchBuffers scratch_;  // device buffers kept between runs
 };
 
 }  // namespace voxr
