@@ -1,16 +1,19 @@
-// Google Benchmark per kernel stage. Times are the device's profiling events (UseManualTime), so they
-// measure the kernels, not host waits; counters break a voxelization into its stages. Meshes come from
-// host/bench/bench_meshes (Debian meshes via scripts/fetch-meshes.sh and VOXR_MESH_DIR).
+// Google Benchmark of the per-frame case: a mesh uploaded once, voxelized again and again into a grid that
+// stays on the device (the cases of host/bench/voxelize_cases.h). Times are the device's profiling events
+// (UseManualTime), so they measure the kernels, not host waits; counters break a voxelization into its
+// stages. Meshes come from host/bench/bench_meshes (Debian meshes via scripts/fetch-meshes.sh and
+// VOXR_MESH_DIR).
 #include <benchmark/benchmark.h>
 
 #include <map>
 #include <memory>
 
 #include "bench/bench_meshes.h"
+#include "bench/voxelize_cases.h"
 #include "cl/cl_runtime.h"
 #include "cl/scan.h"
 #include "core/grid_spec.h"
-#include "voxelize/slice_voxelizer.h"
+#include "voxelize/voxelizer.h"
 
 namespace voxr {
 namespace {
@@ -27,8 +30,7 @@ const TriangleSoup& mesh(const std::string& name) {
   return it->second.soup;
 }
 
-void voxelize(benchmark::State& state, const std::string& name, const std::string& channels,
-              RasterMode mode) {
+void voxelize(benchmark::State& state, const std::string& name, const std::string& case_name) {
   ClRuntime& cl = runtime();
   const TriangleSoup* soup = nullptr;
   try {
@@ -40,15 +42,16 @@ void voxelize(benchmark::State& state, const std::string& name, const std::strin
   GridRequest request;
   request.resolution = uint32_t(state.range(0));
   const GridSpec grid = fit_grid(soup->bounds(), request);
-  const DeviceMesh device_mesh(cl, *soup);
-  SliceVoxelizer voxelizer(cl);
-  VoxelizeOptions options;
-  options.mode = mode;
-  options.channels = ChannelSet::parse(channels);
+  const VoxelizeOptions options = find_voxelize_case(case_name).options();
+  const DeviceMesh device_mesh =
+      upload_mesh(cl, *soup, grid, options.solid ? SplitCull::kColumns : SplitCull::kGrid);
+  Voxelizer voxelizer(cl);
+  voxelizer.prepare(options);
+  DeviceVoxelGrid out;
   std::map<std::string, double> stage_sum;
   VoxelizeStats stats;
   for (auto _ : state) {
-    voxelizer.run(device_mesh, grid, options, &stats);
+    voxelizer.run(device_mesh, grid, options, out, &stats);
     state.SetIterationTime(stats.kernels_ms * 1e-3);
     for (const auto& [stage, ms] : stats.stage_ms) stage_sum[stage] += ms;
   }
@@ -63,13 +66,19 @@ void voxelize(benchmark::State& state, const std::string& name, const std::strin
 }
 
 void BM_VoxelizeOcc(benchmark::State& state, const std::string& name) {
-  voxelize(state, name, "occ", RasterMode::kConservative);
+  voxelize(state, name, "occ");
 }
 void BM_VoxelizeCountNormal(benchmark::State& state, const std::string& name) {
-  voxelize(state, name, "occ,count,normal", RasterMode::kConservative);
+  voxelize(state, name, "count-normal");
 }
 void BM_VoxelizeCenter(benchmark::State& state, const std::string& name) {
-  voxelize(state, name, "occ", RasterMode::kCenter);
+  voxelize(state, name, "center");
+}
+void BM_VoxelizeSlice(benchmark::State& state, const std::string& name) {
+  voxelize(state, name, "slice");
+}
+void BM_VoxelizeSolidParity(benchmark::State& state, const std::string& name) {
+  voxelize(state, name, "solid-parity");
 }
 
 // The scan kernel alone: n uint counts -> ulong offsets.
@@ -110,6 +119,14 @@ BENCHMARK_CAPTURE(BM_VoxelizeCountNormal, bunnyx16, std::string("bunnyx16"))
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_VoxelizeCenter, bunnyx16, std::string("bunnyx16"))
+    ->Arg(512)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_VoxelizeSlice, bunnyx16, std::string("bunnyx16"))
+    ->Arg(512)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_VoxelizeSolidParity, bunnyx16, std::string("bunnyx16"))
     ->Arg(512)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);

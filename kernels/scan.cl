@@ -3,8 +3,10 @@
  * totals recursively; scan_add adds each tile's offset.
  * Types: SCAN_IN (uint or ulong) is read, SCAN_OUT is written, tile totals are ulong so a grand total
  * beyond 32 bits is still exact. SCAN_RANKED_WORDS scans the set-bit counts of 32-bit occupancy words and
- * writes each word beside its rank, (rank << 32) | word, so a voxel's rank costs one load (vox_raster.cl).
+ * writes each word beside its rank (the rank index, voxr_layout.h VOXR_RANKED), so a voxel's rank costs one load.
  * shape: scan_tiles one work group per tile; scan_add one work item per SCAN_ITEMS elements. */
+#include "voxr_layout.h"
+
 #ifndef WG_SIZE
 #define WG_SIZE 256
 #endif
@@ -19,7 +21,7 @@
 #endif
 #ifdef SCAN_RANKED_WORDS
 #define SCAN_LOAD(x) ((ulong)popcount(x))
-#define SCAN_STORE(i, rank) (out[i] = ((ulong)(rank) << 32) | in[i])
+#define SCAN_STORE(i, rank) (out[i] = VOXR_RANKED(rank, in[i]))
 #define SCAN_SHIFT 32
 #else
 #define SCAN_LOAD(x) ((ulong)(x))

@@ -6,11 +6,10 @@
 #ifndef WG_SIZE
 #define WG_SIZE 64
 #endif
-#ifndef VOX_CHANNELS
-#define VOX_CHANNELS 0
+/* VOX_CHANNELS and the channel bits VOX_CH_* come from the channel table (host/grid/channel_table.h). */
+#ifndef VOX_CH_COUNT
+#error "vox_finalize needs the channel defines of host/grid/channel_table.h"
 #endif
-#define VOX_CH_COUNT 2
-#define VOX_CH_NORMAL 4
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_finalize(
     __global const long* acc, __global uint* count, __global int* nsum, __global float* normal, uint voxel_count) {

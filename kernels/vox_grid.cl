@@ -11,7 +11,7 @@
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_grid(
-    VoxGridParams grid, __global const int4* snapped, uint slab, __global uint* occ,
+    VoxGridParams grid, __global const VoxSnappedTriangle* snapped, uint slab, __global uint* occ,
     __global const ulong* ranked, __global long* acc, __global uint* material) {
   const uint tri = get_global_id(0);
   if (tri >= grid.triangle_count) return;
@@ -19,7 +19,12 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_grid(
   const uint material_id = vox_fetch_triangle(&t, snapped, tri);
   vox_derive(&t, &grid);
   if (!vox_triangle_active(&t) || (int)slab < t.first[2] || (int)slab > t.last[2]) return;
+  VoxRule rule;
+  vox_rule_init(&rule, &t, &grid);
   VoxWriter w;
-  vox_writer_init(&w, &t, material_id, occ, ranked, acc, material);
-  vox_scan_slab(&t, &grid, (int)slab, t.first[1], t.last[1], &w);
+  vox_writer_init(&w, material_id, occ, ranked, acc, material);
+#if VOX_PASS == 1 && (VOX_CHANNELS & VOX_CH_NORMAL)
+  vox_fixed_normal(vox_tri_normal(&t), &w.normal);
+#endif
+  vox_scan_slab(&t, &rule, &grid, (int)slab, t.first[1], t.last[1], 1, &w);
 }

@@ -11,7 +11,7 @@
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
-    VoxGridParams grid, __global const int4* snapped, __global const VoxCopy* copies, uint copy_count,
+    VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const VoxCopy* copies, uint copy_count,
     __global uint* occ, __global const ulong* ranked, __global long* acc, __global uint* material) {
   const uint gid = get_global_id(0);
   if (gid >= copy_count) return;
@@ -21,7 +21,12 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
   vox_derive(&t, &grid);
   const int row_first = t.first[1] + (int)(VOXR_COPY_BLOCK(rec) * grid.rows_per_copy);
   const int row_last = min(t.last[1], row_first + (int)grid.rows_per_copy - 1);
+  VoxRule rule;
+  vox_rule_init(&rule, &t, &grid);
   VoxWriter w;
-  vox_writer_init(&w, &t, material_id, occ, ranked, acc, material);
-  vox_scan_slab(&t, &grid, (int)VOXR_COPY_SLICE(rec), row_first, row_last, &w);
+  vox_writer_init(&w, material_id, occ, ranked, acc, material);
+#if VOX_PASS == 1 && (VOX_CHANNELS & VOX_CH_NORMAL)
+  vox_fixed_normal(vox_tri_normal(&t), &w.normal);
+#endif
+  vox_scan_slab(&t, &rule, &grid, (int)VOXR_COPY_SLICE(rec), row_first, row_last, 1, &w);
 }

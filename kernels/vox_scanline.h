@@ -8,8 +8,8 @@
  * Float clipping of the triangle against the slab and each row only narrows the candidate range (with a
  * margin far above float error); membership is always decided by the exact integer test.
  * VOX_PASS 0 sets occupancy bits (one atomic_or per 32 voxels of a row). VOX_PASS 1 runs after the ranks
- * of set voxels are known and adds the attributes VOX_CHANNELS asks for (bit 1 count, 2 normal sum,
- * 3 material) at each voxel's rank. Count and normal sum share two 64-bit accumulators per voxel so a write
+ * of set voxels are known and adds the attributes VOX_CHANNELS asks for (VOX_CH_COUNT, VOX_CH_NORMAL: sum,
+ * VOX_CH_MATERIAL) at each voxel's rank. Count and normal sum share two 64-bit accumulators per voxel so a write
  * costs two atomics, not four: acc[2r] += n.x + 2^32 (count in the high half), acc[2r+1] += n.y + n.z*2^32.
  * Two's complement makes the packed sums exact; vox_finalize.cl unpacks them. */
 #ifndef VOX_SCANLINE_H
@@ -32,9 +32,10 @@
 #endif
 #define VOX_CLIP_MARGIN 0.0625f
 
-#define VOX_CH_COUNT 2
-#define VOX_CH_NORMAL 4
-#define VOX_CH_MATERIAL 8
+/* VOX_CHANNELS and the channel bits VOX_CH_* come from the channel table (host/grid/channel_table.h). */
+#if VOX_PASS == 1 && !defined(VOX_CH_COUNT)
+#error "pass 1 needs the channel defines of host/grid/channel_table.h"
+#endif
 
 /* ---- float clipping: candidate ranges only ---------------------------------------------------------- */
 
@@ -77,10 +78,10 @@ inline void vox_poly_range(const VoxPoly* poly, int axis, float* lo, float* hi) 
   }
 }
 
-/* Cells whose raster sample meets [lo, hi] along an axis (a superset thanks to the margin). */
-inline void vox_cells(float lo, float hi, int* first, int* last) {
-  lo -= VOX_CLIP_MARGIN;
-  hi += VOX_CLIP_MARGIN;
+/* Cells whose raster sample meets [lo, hi] along an axis (a superset thanks to the padding `pad`). */
+inline void vox_cells(float lo, float hi, float pad, int* first, int* last) {
+  lo -= pad;
+  hi += pad;
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
   *first = (int)ceil(lo) - 1;
   *last = (int)floor(hi);
@@ -94,13 +95,13 @@ inline void vox_cells(float lo, float hi, int* first, int* last) {
 
 typedef struct VoxWriter {
   __global uint* occ;
-  __global const ulong* ranked; /* pass 1: (rank of the word's first set voxel << 32) | occupancy word */
+  __global const ulong* ranked; /* pass 1: the rank index (voxr_layout.h VOXR_RANKED) */
   __global long* acc;
   __global uint* material;
   ulong word;        /* pass 0: the word being collected; pass 1: the word of word_ranked */
   uint mask;
   ulong word_ranked; /* pass 1: ranked[word] */
-  int normal[3];
+  int3 normal; /* pass 1: the triangle's fixed-point unit normal (vox_fixed_normal) */
   uint material_id;
 } VoxWriter;
 
@@ -127,13 +128,13 @@ inline void vox_emit(VoxWriter* w, ulong linear) {
     w->word = word;
     w->word_ranked = w->ranked[word];
   }
-  const ulong rank = (w->word_ranked >> 32) + popcount((uint)w->word_ranked & (bit - 1u));
+  const ulong rank = VOXR_RANKED_RANK(w->word_ranked) + popcount(VOXR_RANKED_BITS(w->word_ranked) & (bit - 1u));
 #if VOX_CHANNELS & (VOX_CH_COUNT | VOX_CH_NORMAL)
-  atom_add(w->acc + 2 * rank, (long)w->normal[0] + (1L << 32));
+  atom_add(w->acc + 2 * rank, (long)w->normal.x + (1L << 32));
 #endif
 #if VOX_CHANNELS & VOX_CH_NORMAL
   /* A multiplication, not a shift: shifting a negative value left is undefined in OpenCL C. */
-  atom_add(w->acc + 2 * rank + 1, (long)w->normal[1] + (long)w->normal[2] * (1L << 32));
+  atom_add(w->acc + 2 * rank + 1, (long)w->normal.y + (long)w->normal.z * (1L << 32));
 #endif
 #if VOX_CHANNELS & VOX_CH_MATERIAL
   atomic_max(w->material + rank, w->material_id);
@@ -141,28 +142,90 @@ inline void vox_emit(VoxWriter* w, ulong linear) {
 #endif
 }
 
-/* The triangle's unit normal in fixed point; float operations in an order the host reproduces. */
-inline void vox_fixed_normal(const VoxTri* t, int* out) {
-  const float f[3] = {convert_float(t->n[0]), convert_float(t->n[1]), convert_float(t->n[2])};
-  const float len2 = (f[0] * f[0] + f[1] * f[1]) + f[2] * f[2];
+/* The triangle's unit normal in fixed point from n = (v1-v0) x (v2-v0); float operations in an order the
+ * host reproduces (host/voxelize/snapped_triangle.cpp). */
+inline void vox_fixed_normal(long3 n, int3* out) {
+  const float fx = convert_float(n.x), fy = convert_float(n.y), fz = convert_float(n.z);
+  const float len2 = (fx * fx + fy * fy) + fz * fz;
   const float scale = len2 > 0.0f ? (float)VOXR_NORMAL_ONE / sqrt(len2) : 0.0f;
-  for (int q = 0; q < 3; ++q) out[q] = (int)rint(f[q] * scale);
+  *out = (int3)((int)rint(fx * scale), (int)rint(fy * scale), (int)rint(fz * scale));
+}
+
+inline long3 vox_cross(long3 a, long3 b) {
+  return (long3)(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+
+inline long3 vox_tri_normal(const VoxTri* t) {
+  return (long3)(t->n[0], t->n[1], t->n[2]);
 }
 
 /* ---- exact rules --------------------------------------------------------------------------------- */
 
+/* The slab-independent part of a triangle's membership test, set up once per triangle (or copy).
+ * conservative: the 13-axis separating-axis test of the closed triangle against the closed voxel box
+ *   widened by `margin` on every side, [i*S - m, (i+1)*S + m] x ... . The box axes are the loop ranges;
+ *   edge x X is constant along a row (row_*); edge x Y, edge x Z and the normal vary linearly with the
+ *   column (col_*, 7 of them). An edge's own vertices project to the same value, so the triangle's
+ *   projection is [min(0,t), max(0,t)] with t the projection of one vertex relative to v0 (v2 for edge 0,
+ *   v1 for edges 1 and 2); the widened box projects to a.(corner - v0) + (S + 2m) [sum of negative a, sum
+ *   of positive a].
+ * center: the column-centre coverage (top-left rule) and the sign of the plane's depth gradient. */
+typedef struct VoxRule {
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
-/* A separating-axis candidate a: the box whose corner is b (relative to v0) overlaps the triangle along a
- * iff lo <= a.b <= hi, where the triangle projects to [min(0,t), max(0,t)] and the box to a.b plus
- * S * [sum of negative a, sum of positive a]. */
-inline void vox_axis_bounds(long t, long ax, long ay, long az, long* lo, long* hi) {
-  *lo = min(0L, t) - VOX_S * (max(ax, 0L) + max(ay, 0L) + max(az, 0L));
-  *hi = max(0L, t) - VOX_S * (min(ax, 0L) + min(ay, 0L) + min(az, 0L));
+  long row_ay[3], row_az[3], row_lo[3], row_hi[3];
+  long col_ax[7], col_ay[7], col_az[7], col_lo[7], col_hi[7];
+  long corner; /* -margin: a box's low corner relative to i*S, j*S, k*S */
+#else
+  VoxCoverage coverage;
+  long sgn;
+#endif
+} VoxRule;
+
+#if VOXR_MODE == VOXR_MODE_CONSERVATIVE
+inline void vox_axis_bounds(long t, long ax, long ay, long az, long size, long* lo, long* hi) {
+  *lo = min(0L, t) - size * (max(ax, 0L) + max(ay, 0L) + max(az, 0L));
+  *hi = max(0L, t) - size * (min(ax, 0L) + min(ay, 0L) + min(az, 0L));
 }
 #endif
 
-inline void vox_writer_init(VoxWriter* w, const VoxTri* t, uint material_id, __global uint* occ,
-                            __global const ulong* ranked, __global long* acc, __global uint* material) {
+inline void vox_rule_init(VoxRule* r, const VoxTri* t, const VoxGridParams* grid) {
+#if VOXR_MODE == VOXR_MODE_CONSERVATIVE
+  const long size = VOX_S + 2 * (long)grid->margin;
+  r->corner = -(long)grid->margin;
+  const long r1[3] = {t->v[1][0] - t->v[0][0], t->v[1][1] - t->v[0][1], t->v[1][2] - t->v[0][2]};
+  const long r2[3] = {t->v[2][0] - t->v[0][0], t->v[2][1] - t->v[0][1], t->v[2][2] - t->v[0][2]};
+  for (int e = 0; e < 3; ++e) {
+    const int f = e == 2 ? 0 : e + 1;
+    const long dx = t->v[f][0] - t->v[e][0], dy = t->v[f][1] - t->v[e][1], dz = t->v[f][2] - t->v[e][2];
+    const long* q = e == 0 ? r2 : r1;
+    /* edge x X = (0, dz, -dy) */
+    r->row_ay[e] = dz;
+    r->row_az[e] = -dy;
+    vox_axis_bounds(dz * q[1] - dy * q[2], 0, dz, -dy, size, &r->row_lo[e], &r->row_hi[e]);
+    /* edge x Y = (-dz, 0, dx) */
+    r->col_ax[2 * e] = -dz;
+    r->col_ay[2 * e] = 0;
+    r->col_az[2 * e] = dx;
+    vox_axis_bounds(dx * q[2] - dz * q[0], -dz, 0, dx, size, &r->col_lo[2 * e], &r->col_hi[2 * e]);
+    /* edge x Z = (dy, -dx, 0) */
+    r->col_ax[2 * e + 1] = dy;
+    r->col_ay[2 * e + 1] = -dx;
+    r->col_az[2 * e + 1] = 0;
+    vox_axis_bounds(dy * q[0] - dx * q[1], dy, -dx, 0, size, &r->col_lo[2 * e + 1], &r->col_hi[2 * e + 1]);
+  }
+  r->col_ax[6] = t->n[0];
+  r->col_ay[6] = t->n[1];
+  r->col_az[6] = t->n[2];
+  vox_axis_bounds(0, t->n[0], t->n[1], t->n[2], size, &r->col_lo[6], &r->col_hi[6]);
+#else
+  vox_coverage_init(&r->coverage, t);
+  r->sgn = t->n[2] > 0 ? 1 : -1;
+#endif
+}
+
+/* A writer for one triangle (pass 1 with normals: set w->normal with vox_fixed_normal afterwards). */
+inline void vox_writer_init(VoxWriter* w, uint material_id, __global uint* occ, __global const ulong* ranked,
+                            __global long* acc, __global uint* material) {
   w->occ = occ;
   w->ranked = ranked;
   w->acc = acc;
@@ -170,78 +233,42 @@ inline void vox_writer_init(VoxWriter* w, const VoxTri* t, uint material_id, __g
   w->word = ~0UL;
   w->mask = 0;
   w->material_id = material_id;
-  w->normal[0] = w->normal[1] = w->normal[2] = 0;
-#if VOX_PASS == 1 && (VOX_CHANNELS & VOX_CH_NORMAL)
-  vox_fixed_normal(t, w->normal);
-#endif
+  w->normal = (int3)(0);
 }
 
-/* Rows [row_first, row_last] of slab k of triangle t through writer w: the work of one copy. */
-inline void vox_scan_slab(const VoxTri* t, const VoxGridParams* grid, int k, int row_first, int row_last,
-                          VoxWriter* w) {
-  /* Large triangles: clip to the slab (float) to narrow the rows, and later each row to narrow columns. */
-  const int clip_columns = t->last[0] - t->first[0] >= VOX_SMALL_SPAN;
+/* Rows [row_first, row_last] of slab k of triangle t through writer w: the work of one copy. With `clip`,
+ * large triangles are first clipped to the slab (float) to narrow the rows, and then to each row to narrow
+ * the columns; membership is decided by the exact rule either way. */
+inline void vox_scan_slab(const VoxTri* t, const VoxRule* rule, const VoxGridParams* grid, int k,
+                          int row_first, int row_last, int clip, VoxWriter* w) {
+  const int clip_columns = clip && t->last[0] - t->first[0] >= VOX_SMALL_SPAN;
+  /* Float error of the clipping, plus the widening of conservative boxes. */
+  const float pad = VOX_CLIP_MARGIN + (float)grid->margin / (float)VOXR_SUBVOXEL;
   VoxPoly slab;
-  if (clip_columns || t->last[1] - t->first[1] >= VOX_SMALL_SPAN) {
+  if (clip_columns || (clip && t->last[1] - t->first[1] >= VOX_SMALL_SPAN)) {
     slab.n = 3;
     for (int c = 0; c < 3; ++c)
       for (int a = 0; a < 3; ++a) slab.c[a][c] = (float)t->v[c][a] / (float)VOXR_SUBVOXEL;
-    vox_clip_band(&slab, 2, (float)k - VOX_CLIP_MARGIN, (float)(k + 1) + VOX_CLIP_MARGIN);
+    vox_clip_band(&slab, 2, (float)k - pad, (float)(k + 1) + pad);
     if (slab.n == 0) return;
     float lo, hi;
     int first, last;
     vox_poly_range(&slab, 1, &lo, &hi);
-    vox_cells(lo, hi, &first, &last);
+    vox_cells(lo, hi, pad, &first, &last);
     row_first = max(row_first, first);
     row_last = min(row_last, last);
   }
   if (row_first > row_last) return;
 
-  const long rel_z = (long)k * VOX_S - t->v[0][2];
-
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
-  /* The 13 separating axes: the box axes are the loop ranges; edge x X is constant along a row (row_*);
-   * edge x Y, edge x Z and the normal vary linearly with the column (col_*, 7 of them). An edge's own
-   * vertices project to the same value, so the triangle's projection is [min(0,t), max(0,t)] with t the
-   * projection of one vertex relative to v0 (v2 for edge 0, v1 for edges 1 and 2). */
-  long row_ay[3], row_az[3], row_lo[3], row_hi[3];
-  long col_ax[7], col_ay[7], col_az[7], col_lo[7], col_hi[7];
-  const long r1[3] = {t->v[1][0] - t->v[0][0], t->v[1][1] - t->v[0][1], t->v[1][2] - t->v[0][2]};
-  const long r2[3] = {t->v[2][0] - t->v[0][0], t->v[2][1] - t->v[0][1], t->v[2][2] - t->v[0][2]};
-  for (int e = 0; e < 3; ++e) {
-    const int f = e == 2 ? 0 : e + 1;
-    const long dx = t->v[f][0] - t->v[e][0], dy = t->v[f][1] - t->v[e][1], dz = t->v[f][2] - t->v[e][2];
-    const long* r = e == 0 ? r2 : r1;
-    /* edge x X = (0, dz, -dy) */
-    row_ay[e] = dz;
-    row_az[e] = -dy;
-    vox_axis_bounds(dz * r[1] - dy * r[2], 0, dz, -dy, &row_lo[e], &row_hi[e]);
-    /* edge x Y = (-dz, 0, dx) */
-    col_ax[2 * e] = -dz;
-    col_ay[2 * e] = 0;
-    col_az[2 * e] = dx;
-    vox_axis_bounds(dx * r[2] - dz * r[0], -dz, 0, dx, &col_lo[2 * e], &col_hi[2 * e]);
-    /* edge x Z = (dy, -dx, 0) */
-    col_ax[2 * e + 1] = dy;
-    col_ay[2 * e + 1] = -dx;
-    col_az[2 * e + 1] = 0;
-    vox_axis_bounds(dy * r[0] - dx * r[1], dy, -dx, 0, &col_lo[2 * e + 1], &col_hi[2 * e + 1]);
-  }
-  col_ax[6] = t->n[0];
-  col_ay[6] = t->n[1];
-  col_az[6] = t->n[2];
-  vox_axis_bounds(0, t->n[0], t->n[1], t->n[2], &col_lo[6], &col_hi[6]);
-  /* The slab is fixed for the whole record: fold its part of every projection in once. */
-  long row_z[3], col_z[7], col_step[7];
-  for (int e = 0; e < 3; ++e) row_z[e] = row_az[e] * rel_z;
-  for (int q = 0; q < 7; ++q) {
-    col_z[q] = col_az[q] * rel_z;
-    col_step[q] = col_ax[q] * VOX_S;
-  }
+  const long rel_z = (long)k * VOX_S + rule->corner - t->v[0][2];
+  /* The slab is fixed for the whole call: fold its part of every projection in once. */
+  long row_z[3], col_z[7];
+  for (int e = 0; e < 3; ++e) row_z[e] = rule->row_az[e] * rel_z;
+  for (int q = 0; q < 7; ++q) col_z[q] = rule->col_az[q] * rel_z;
 #else
-  VoxCoverage coverage;
-  vox_coverage_init(&coverage, t);
-  const long sgn = t->n[2] > 0 ? 1 : -1;
+  const long rel_z = (long)k * VOX_S - t->v[0][2];
+  const long sgn = rule->sgn;
   const long depth_lo = rel_z * t->n[2] * sgn;
   const long depth_hi = (rel_z + VOX_S) * t->n[2] * sgn;
 #endif
@@ -251,15 +278,15 @@ inline void vox_scan_slab(const VoxTri* t, const VoxGridParams* grid, int k, int
     if (clip_columns) {
       VoxPoly row = slab;
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
-      vox_clip_band(&row, 1, (float)j - VOX_CLIP_MARGIN, (float)(j + 1) + VOX_CLIP_MARGIN);
+      vox_clip_band(&row, 1, (float)j - pad, (float)(j + 1) + pad);
 #else
-      vox_clip_band(&row, 1, (float)j + 0.5f - VOX_CLIP_MARGIN, (float)j + 0.5f + VOX_CLIP_MARGIN);
+      vox_clip_band(&row, 1, (float)j + 0.5f - pad, (float)j + 0.5f + pad);
 #endif
       if (row.n == 0) continue;
       float lo, hi;
       int first, last;
       vox_poly_range(&row, 0, &lo, &hi);
-      vox_cells(lo, hi, &first, &last);
+      vox_cells(lo, hi, pad, &first, &last);
       col_first = max(col_first, first);
       col_last = min(col_last, last);
     }
@@ -267,31 +294,31 @@ inline void vox_scan_slab(const VoxTri* t, const VoxGridParams* grid, int k, int
     const ulong row_base = ((ulong)k * grid->dims[1] + (ulong)j) * grid->dims[0];
 
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
-    const long rel_y = (long)j * VOX_S - t->v[0][1];
+    const long rel_y = (long)j * VOX_S + rule->corner - t->v[0][1];
     int row_ok = 1;
     for (int e = 0; e < 3; ++e) {
-      const long v = row_ay[e] * rel_y + row_z[e];
-      row_ok &= row_lo[e] <= v && v <= row_hi[e];
+      const long v = rule->row_ay[e] * rel_y + row_z[e];
+      row_ok &= rule->row_lo[e] <= v && v <= rule->row_hi[e];
     }
     if (!row_ok) continue;
-    const long rel_x = (long)col_first * VOX_S - t->v[0][0];
+    const long rel_x = (long)col_first * VOX_S + rule->corner - t->v[0][0];
     long value[7];
-    for (int q = 0; q < 7; ++q) value[q] = col_ax[q] * rel_x + col_ay[q] * rel_y + col_z[q];
+    for (int q = 0; q < 7; ++q) value[q] = rule->col_ax[q] * rel_x + rule->col_ay[q] * rel_y + col_z[q];
     for (int i = col_first; i <= col_last; ++i) {
       int inside = 1;
-      for (int q = 0; q < 7; ++q) inside &= col_lo[q] <= value[q] && value[q] <= col_hi[q];
+      for (int q = 0; q < 7; ++q) inside &= rule->col_lo[q] <= value[q] && value[q] <= rule->col_hi[q];
       if (inside) vox_emit(w, row_base + (ulong)i);
-      for (int q = 0; q < 7; ++q) value[q] += col_step[q];
+      for (int q = 0; q < 7; ++q) value[q] += rule->col_ax[q] * VOX_S;
     }
 #else
     const long cy = (long)j * VOX_S + VOX_S / 2;
     const long cx0 = (long)col_first * VOX_S + VOX_S / 2;
     long edge[3];
-    vox_coverage_start(&coverage, col_first, j, edge);
+    vox_coverage_start(&rule->coverage, col_first, j, edge);
     long depth = -sgn * (t->n[0] * (cx0 - t->v[0][0]) + t->n[1] * (cy - t->v[0][1]));
     const long depth_step = -sgn * t->n[0] * VOX_S;
     for (int i = col_first; i <= col_last; ++i) {
-      const int inside = vox_coverage_next(&coverage, edge) && depth_lo <= depth && depth < depth_hi;
+      const int inside = vox_coverage_next(&rule->coverage, edge) && depth_lo <= depth && depth < depth_hi;
       depth += depth_step;
       if (inside) vox_emit(w, row_base + (ulong)i);
     }

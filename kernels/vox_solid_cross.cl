@@ -77,9 +77,10 @@ inline long vox_crossing_voxel(long D, long an, long v0z) {
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_cross(
-    VoxGridParams grid, __global const int4* snapped, __global const uint* item_counts,
-    __global const ulong* item_offsets, ulong item_base, ulong item_total, uint words_x, uint slice_words,
+    VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const uint* item_counts,
+    __global const ulong* item_offsets, ulong item_base, ulong item_total, VoxSolidLayout layout,
     __global uint* toggles, __global uint* odd) {
+  const uint words_x = layout.words_x, slice_words = layout.slice_words;
   const ulong item = item_base + get_global_id(0);
   if (item >= item_total) return;
   /* The triangle owning the item: the last one whose offset is <= item (empty triangles share the offset of

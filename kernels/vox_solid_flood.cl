@@ -8,6 +8,7 @@
  * out: outside, grown in place; changed = 1 when a sweep grew it
  * shape: vox_solid_flood_x: one work item per row (j, k), 32 voxels per step with a log-step fill inside the
  *        word; vox_solid_flood_y / _z: one work item per row word, 32 parallel lines along y / z. */
+#include "voxr_layout.h"
 #include "vox_solid_bits.h"
 
 #ifndef WG_SIZE
@@ -42,8 +43,10 @@ inline uint vox_fill_down(uint g, uint p) {
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_flood_x(
-    uint ny, uint nz, uint words_x, uint slice_words, __global const uint* free_bits, __global uint* outside,
+    VoxSolidLayout layout, __global const uint* free_bits, __global uint* outside,
     __global uint* changed) {
+  const uint ny = layout.dims[1], nz = layout.dims[2];
+  const uint words_x = layout.words_x, slice_words = layout.slice_words;
   const ulong row = get_global_id(0);
   if (row >= (ulong)ny * nz) return;
   const ulong k = row / ny;
@@ -93,8 +96,10 @@ inline uint vox_sweep_lines(__global const uint* free_bits, __global uint* outsi
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_flood_y(
-    uint ny, uint nz, uint words_x, uint slice_words, __global const uint* free_bits, __global uint* outside,
+    VoxSolidLayout layout, __global const uint* free_bits, __global uint* outside,
     __global uint* changed) {
+  const uint ny = layout.dims[1], nz = layout.dims[2];
+  const uint words_x = layout.words_x, slice_words = layout.slice_words;
   const ulong gid = get_global_id(0);
   if (gid >= (ulong)nz * words_x) return;
   const ulong k = gid / words_x, wx = gid - k * words_x;
@@ -102,8 +107,10 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_flo
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_flood_z(
-    uint ny, uint nz, uint words_x, uint slice_words, __global const uint* free_bits, __global uint* outside,
+    VoxSolidLayout layout, __global const uint* free_bits, __global uint* outside,
     __global uint* changed) {
+  const uint ny = layout.dims[1], nz = layout.dims[2];
+  const uint words_x = layout.words_x, slice_words = layout.slice_words;
   const ulong gid = get_global_id(0);
   if (gid >= (ulong)ny * words_x) return;
   if (vox_sweep_lines(free_bits, outside, gid, slice_words, nz)) *changed = 1u;

@@ -23,11 +23,11 @@
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_setup(
     VoxGridParams grid, __global const float4* positions, __global const uint4* triangles,
-    __global int4* snapped, __global uint* item_counts, __global uint* too_large) {
+    __global VoxSnappedTriangle* snapped, __global uint* item_counts, __global uint* too_large) {
   const uint t = get_global_id(0);
   if (t >= grid.triangle_count) return;
   VoxTri tri;
-  vox_prepare_triangle(&tri, &grid, positions, triangles, t, snapped);
+  vox_prepare_triangle(&tri, &grid, positions, triangles[t], snapped, t);
   uint count = 0;
   /* Edge-on triangles (no projected area) cover no column centre. */
   if (tri.n[2] != 0 && tri.first[0] <= tri.last[0] && tri.first[1] <= tri.last[1]) {

@@ -45,22 +45,25 @@ inline void vox_snap_triangle(VoxTri* t, const VoxGridParams* grid, __global con
   }
 }
 
-/* Stored form: three int4, xyz = vertex, w of the first = material. */
-inline void vox_store_triangle(const VoxTri* t, uint material, __global int4* snapped, uint index) {
-  for (int c = 0; c < 3; ++c)
-    snapped[3 * (ulong)index + c] =
-        (int4)((int)t->v[c][0], (int)t->v[c][1], (int)t->v[c][2], c == 0 ? (int)material : 0);
+/* Stored form (voxr_layout.h VoxSnappedTriangle); |coordinates| < 2^31 after the snap's clamp. */
+inline void vox_store_triangle(const VoxTri* t, uint material, __global VoxSnappedTriangle* snapped, uint index) {
+  __global VoxSnappedTriangle* out = snapped + index;
+  for (int c = 0; c < 3; ++c) {
+    out->x[c] = (int)t->v[c][0];
+    out->y[c] = (int)t->v[c][1];
+    out->z[c] = (int)t->v[c][2];
+  }
+  out->material = material;
 }
 
-inline uint vox_fetch_triangle(VoxTri* t, __global const int4* snapped, uint index) {
-  int4 q[3];
-  for (int c = 0; c < 3; ++c) q[c] = snapped[3 * (ulong)index + c];
+inline uint vox_fetch_triangle(VoxTri* t, __global const VoxSnappedTriangle* snapped, uint index) {
+  __global const VoxSnappedTriangle* in = snapped + index;
   for (int c = 0; c < 3; ++c) {
-    t->v[c][0] = q[c].x;
-    t->v[c][1] = q[c].y;
-    t->v[c][2] = q[c].z;
+    t->v[c][0] = in->x[c];
+    t->v[c][1] = in->y[c];
+    t->v[c][2] = in->z[c];
   }
-  return (uint)q[0].w;
+  return in->material;
 }
 
 /* Bounding box, normal and the index ranges of snapped vertices. */
@@ -78,9 +81,10 @@ inline void vox_derive(VoxTri* t, const VoxGridParams* grid) {
   for (int a = 0; a < 3; ++a) {
     long first, last;
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
-    /* Closed boxes [k, k+1]: k*S <= hi and (k+1)*S >= lo. */
-    first = vox_floor_cell(t->lo[a] - 1);
-    last = vox_floor_cell(t->hi[a]);
+    /* Closed boxes widened by the margin, [k*S - m, (k+1)*S + m]: k*S - m <= hi and (k+1)*S + m >= lo. */
+    const long m = (long)grid->margin;
+    first = vox_floor_cell(t->lo[a] - m - 1);
+    last = vox_floor_cell(t->hi[a] + m);
 #else
     if (a < 2) { /* pixel centres (j + 1/2) * S inside [lo, hi] */
       first = vox_floor_cell(t->lo[a] - VOX_S / 2 + VOX_S - 1);
@@ -97,8 +101,7 @@ inline void vox_derive(VoxTri* t, const VoxGridParams* grid) {
 
 /* The setup stages' common start: snap triangle t, derive its ranges and store it for the later stages. */
 inline void vox_prepare_triangle(VoxTri* t, const VoxGridParams* grid, __global const float4* positions,
-                                 __global const uint4* triangles, uint index, __global int4* snapped) {
-  const uint4 indices = triangles[index];
+                                 uint4 indices, __global VoxSnappedTriangle* snapped, uint index) {
   vox_snap_triangle(t, grid, positions, indices);
   vox_derive(t, grid);
   vox_store_triangle(t, indices.w, snapped, index);

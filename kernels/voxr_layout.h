@@ -1,7 +1,9 @@
-/* voxr_layout.h — the one description of everything the host and the kernels both read.
+/* voxr_layout.h — the one description of everything the host and the kernels both read: parameter blocks
+ * passed by value, the records one stage writes and another reads, and the packing of shared words.
  * Written in the C subset that OpenCL C 1.2 and C++20 both accept: fixed-size scalar arrays, no vector
- * types, no padding surprises (every member is 4 bytes wide). The host static_asserts the sizes and a
- * test compares them with sizeof/offsetof measured by a kernel. */
+ * types, no padding surprises (every member is 4 bytes wide). host/voxelize/layout_checks.cpp
+ * static_asserts the sizes and tests/layout_test.cpp compares every size and offset with the values a
+ * kernel (kernels/layout_probe.cl) measures on the device. */
 #ifndef VOXR_LAYOUT_H
 #define VOXR_LAYOUT_H
 
@@ -36,7 +38,9 @@ typedef struct VoxGridParams {
   uint dims[4];            /* x, y, z, unused */
   uint rows_per_copy;      /* rows of one slab that a single raster work item handles */
   uint triangle_count;
-  uint pad[2];
+  uint margin; /* conservative mode: voxel boxes are widened by this many 1/VOXR_SUBVOXEL units on every
+                  side, the bound on how far snapping and the float transform move a vertex */
+  uint pad;
 } VoxGridParams;
 
 /* One duplicated triangle: the "geometry shader" output. The slice (slab k) and the block of rows inside
@@ -49,5 +53,57 @@ typedef struct VoxCopy {
 #define VOXR_COPY_SLICE(c) ((c).slice_block & 0xffffu)
 #define VOXR_COPY_BLOCK(c) ((c).slice_block >> 16)
 #define VOXR_MAX_BLOCKS 0xffffu
+
+/* A triangle's copies, from vox_setup.cl to vox_expand.cl: copies = slabs x row_blocks. */
+typedef struct VoxCopyInfo {
+  uint first_slab;
+  uint row_blocks;
+} VoxCopyInfo;
+
+/* A triangle in exact grid coordinates (vox_triangle.h), written by the setup stages and read by every
+ * later stage instead of the mesh: vertex c is (x[c], y[c], z[c]) in 1/VOXR_SUBVOXEL voxel units. */
+typedef struct VoxSnappedTriangle {
+  int x[3];
+  int y[3];
+  int z[3];
+  uint material;
+  uint pad[2];
+} VoxSnappedTriangle;
+
+/* The rank index of a dense occupancy array: one 64-bit word per 32-bit occupancy word, holding the word
+ * itself in the low half and the number of set voxels before it (its first set voxel's rank) in the high
+ * half, so a voxel's rank costs one load and a popcount (grid_view.h). */
+#define VOXR_RANKED(rank, bits) (((ulong)(rank) << 32) | (ulong)(bits))
+#define VOXR_RANKED_RANK(w) ((uint)((w) >> 32))
+#define VOXR_RANKED_BITS(w) ((uint)(w))
+
+/* Slicemap (Eisemann & Decoret 2006) raster work: a triangle's tiles of column centres, and one tile. */
+typedef struct SlicemapTiles {
+  uint rows; /* tiles along y */
+  uint cols; /* tiles along x */
+} SlicemapTiles;
+
+typedef struct SlicemapRecord {
+  uint triangle;
+  uint tile; /* row tile in the high 16 bits, column tile in the low 16 */
+} SlicemapRecord;
+
+/* The row-padded bit layout of the solid stages (vox_solid_bits.h): word k * slice_words + j * words_x +
+ * i / 32 holds voxel (i, j, k) at bit i % 32. */
+typedef struct VoxSolidLayout {
+  uint dims[4]; /* x, y, z, unused */
+  uint words_x; /* ceil(dims.x / 32) */
+  uint slice_words;
+  uint pad[2];
+} VoxSolidLayout;
+
+/* What grid_view.h needs besides the channel buffers: the grid's frame and which channels exist. */
+typedef struct VoxGridView {
+  float world_to_grid[12]; /* rows of a 3x4 affine: world -> grid units (voxel (i,j,k) = [i,i+1]x...) */
+  uint dims[4];            /* x, y, z, unused */
+  uint channels;           /* ChannelSet bits (host/grid/channel_table.h) */
+  uint voxels_set;         /* entries of each sparse channel */
+  uint pad[2];
+} VoxGridView;
 
 #endif

@@ -6,7 +6,7 @@
 #include "core/mesh_loader.h"
 #include "test_support.h"
 #include "voxelize/reference_voxelizer.h"
-#include "voxelize/slice_voxelizer.h"
+#include "voxelize/voxelizer.h"
 
 namespace voxr {
 namespace {
@@ -14,7 +14,7 @@ namespace {
 const ChannelSet kAll = ChannelSet::parse("occ,count,normal,material");
 
 VoxelGrid run_kernels(const TriangleSoup& soup, const GridSpec& grid, RasterMode mode) {
-  SliceVoxelizer voxelizer(test::runtime());
+  Voxelizer voxelizer(test::runtime());
   VoxelizeOptions options;
   options.mode = mode;
   options.channels = kAll;
@@ -108,7 +108,7 @@ TEST(SliceVoxelizerMeshes, OversizedTrianglesAreSplitAndStayClose) {
   r.bounds = Bounds{{0, 0, 0}, {1, 1, 1}};
   r.resolution = 16;
   const GridSpec grid = fit_grid({}, r);
-  SliceVoxelizer voxelizer(test::runtime());
+  Voxelizer voxelizer(test::runtime());
   VoxelizeOptions options;
   VoxelizeStats stats;
   const VoxelGrid g = voxelizer.run(soup, grid, options, &stats);

@@ -4,7 +4,7 @@
 
 #include "test_support.h"
 #include "voxelize/reference_voxelizer.h"
-#include "voxelize/slice_voxelizer.h"
+#include "voxelize/voxelizer.h"
 
 namespace voxr {
 namespace {
@@ -15,7 +15,7 @@ ChannelSet all_channels() {
 
 void expect_matches_reference(const TriangleSoup& soup, const GridSpec& grid, RasterMode mode,
                               uint32_t rows_per_copy = 4) {
-  SliceVoxelizer voxelizer(test::runtime());
+  Voxelizer voxelizer(test::runtime());
   VoxelizeOptions options;
   options.mode = mode;
   options.channels = all_channels();
@@ -69,11 +69,11 @@ TEST(SliceVoxelizer, RowsPerCopyDoesNotChangeTheResult) {
 TEST(SliceVoxelizer, BatchesGiveTheSameGrid) {
   const TriangleSoup soup = test::random_soup(5, 300, -1.0f, 1.0f, 0.5f);
   const GridSpec grid = fitted(soup, 40);
-  SliceVoxelizer voxelizer(test::runtime());
+  Voxelizer voxelizer(test::runtime());
   VoxelizeOptions one;
   one.channels = all_channels();
   VoxelizeOptions many = one;
-  many.copy_budget_bytes = 64 * sizeof(VoxCopy);
+  many.record_budget_bytes = 64 * sizeof(VoxCopy);
   VoxelizeStats stats;
   const VoxelGrid a = voxelizer.run(soup, grid, one);
   const VoxelGrid b = voxelizer.run(soup, grid, many, &stats);
@@ -91,7 +91,7 @@ TEST(SliceVoxelizer, GridBaselineEqualsSliceMethod) {
   // Llamas' per-slab passes and the papers' duplication share the scanline code: identical voxels.
   const TriangleSoup soup = test::random_soup(6, 300, -1.0f, 1.0f, 0.8f);
   const GridSpec grid = fitted(soup, 40);
-  SliceVoxelizer voxelizer(test::runtime());
+  Voxelizer voxelizer(test::runtime());
   for (RasterMode mode : {RasterMode::kConservative, RasterMode::kCenter}) {
     VoxelizeOptions slice;
     slice.mode = mode;

@@ -12,8 +12,8 @@
 #include "core/mesh_loader.h"
 #include "test_support.h"
 #include "voxelize/reference_slicemap.h"
-#include "voxelize/slice_voxelizer.h"
 #include "voxelize/slicemap_voxelizer.h"
+#include "voxelize/voxelizer.h"
 
 namespace voxr {
 namespace {
@@ -66,13 +66,35 @@ std::string compare_slicemaps(const Slicemap& expected, const Slicemap& actual) 
   return differences ? fmt::format("{} differences:\n{}", differences, report) : std::string();
 }
 
+// One slicemap voxelization through the Voxelizer, with its raw bits.
+struct SlicemapRun {
+  VoxelGrid grid;
+  Slicemap map;
+  VoxelizeStats stats;
+};
+
+SlicemapRun run_slicemap(const TriangleSoup& soup, const GridSpec& grid, SlicemapSlicing slicing,
+                         uint64_t record_budget_bytes = VoxelizeOptions{}.record_budget_bytes) {
+  Voxelizer voxelizer(test::runtime());
+  VoxelizeOptions options;
+  options.method = VoxelizeMethod::kSlicemap;
+  options.slicing = slicing;
+  options.record_budget_bytes = record_budget_bytes;
+  SlicemapRun run;
+  run.grid = voxelizer.run(soup, grid, options, &run.stats);
+  run.map = static_cast<SlicemapVoxelizer&>(voxelizer.surface(VoxelizeMethod::kSlicemap)).read_slicemap();
+  return run;
+}
+
 // Kernels == CPU reference, bits and voxels; returns the kernels' grid.
 VoxelGrid expect_exact(const TriangleSoup& soup, const GridSpec& grid, SlicemapSlicing slicing,
-                       const std::string& what, const SlicemapOptions& options = {},
+                       const std::string& what,
+                       uint64_t record_budget_bytes = VoxelizeOptions{}.record_budget_bytes,
                        VoxelizeStats* stats = nullptr) {
-  SlicemapVoxelizer voxelizer(test::runtime());
-  Slicemap actual_map;
-  const VoxelGrid actual = voxelizer.run(soup, grid, slicing, stats, &actual_map, options);
+  const SlicemapRun run = run_slicemap(soup, grid, slicing, record_budget_bytes);
+  const Slicemap& actual_map = run.map;
+  const VoxelGrid& actual = run.grid;
+  if (stats) *stats = run.stats;
   const Slicemap expected_map = reference_slicemap(soup, grid, slicing);
   const VoxelGrid expected = reference_slicemap_voxels(expected_map);
   const std::string where = what + " " + slicemap_slicing_name(slicing);
@@ -85,12 +107,11 @@ VoxelGrid expect_exact(const TriangleSoup& soup, const GridSpec& grid, SlicemapS
 
 // Uniform slicemap == the slice voxelizer in centre mode (occ), kernel against kernel.
 void expect_uniform_equals_center(const TriangleSoup& soup, const GridSpec& grid, const std::string& what) {
-  SlicemapVoxelizer slicemap(test::runtime());
-  SliceVoxelizer slice(test::runtime());
+  Voxelizer slice(test::runtime());
   VoxelizeOptions options;
   options.mode = RasterMode::kCenter;
   const VoxelGrid center = slice.run(soup, grid, options);
-  const VoxelGrid uniform = slicemap.run(soup, grid, SlicemapSlicing::kUniform);
+  const VoxelGrid uniform = run_slicemap(soup, grid, SlicemapSlicing::kUniform).grid;
   EXPECT_GT(center.voxels_set, 0u) << what;
   EXPECT_EQ(test::compare_grids(center, uniform), "") << what;
 }
@@ -148,10 +169,10 @@ TEST(Slicemap, LocalResolvesSurfacesCloserThanAVoxel) {
   add_plane(soup, 16, 16, 10.25f);
   add_plane(soup, 16, 16, 10.75f);
   const GridSpec grid = unit_grid({16, 16, 32});
-  Slicemap uniform, local;
-  SlicemapVoxelizer voxelizer(test::runtime());
-  const VoxelGrid uniform_grid = voxelizer.run(soup, grid, SlicemapSlicing::kUniform, nullptr, &uniform);
-  const VoxelGrid local_grid = voxelizer.run(soup, grid, SlicemapSlicing::kLocal, nullptr, &local);
+  const SlicemapRun uniform_run = run_slicemap(soup, grid, SlicemapSlicing::kUniform);
+  const SlicemapRun local_run = run_slicemap(soup, grid, SlicemapSlicing::kLocal);
+  const Slicemap &uniform = uniform_run.map, &local = local_run.map;
+  const VoxelGrid &uniform_grid = uniform_run.grid, &local_grid = local_run.grid;
   for (uint32_t j = 0; j < 16; ++j)
     for (uint32_t i = 0; i < 16; ++i) {
       ASSERT_EQ(uniform.bits_set(i, j), 1u);
@@ -176,10 +197,10 @@ TEST(Slicemap, LocalBitStraddlingAVoxelFaceAddsAVoxel) {
   TriangleSoup soup;
   for (float z : {1.25f, 3.9f, 5.75f}) add_plane(soup, 16, 16, z);
   const GridSpec grid = unit_grid({16, 16, 8});
-  Slicemap local;
-  SlicemapVoxelizer voxelizer(test::runtime());
-  const VoxelGrid uniform_grid = voxelizer.run(soup, grid, SlicemapSlicing::kUniform);
-  const VoxelGrid local_grid = voxelizer.run(soup, grid, SlicemapSlicing::kLocal, nullptr, &local);
+  const VoxelGrid uniform_grid = run_slicemap(soup, grid, SlicemapSlicing::kUniform).grid;
+  const SlicemapRun local_run = run_slicemap(soup, grid, SlicemapSlicing::kLocal);
+  const Slicemap& local = local_run.map;
+  const VoxelGrid& local_grid = local_run.grid;
   EXPECT_EQ(uniform_grid.voxels_set, 3u * 256u);
   EXPECT_EQ(local_grid.voxels_set, 4u * 256u);
   for (uint32_t j = 0; j < 16; ++j)
@@ -199,9 +220,8 @@ TEST(Slicemap, LocalContainsUniformOnATorus) {
   // are the neighbours of bits that straddle a voxel face (bits are W / B <= 1 voxel wide).
   const TriangleSoup soup = make_torus();
   const GridSpec grid = fitted(soup, 64);
-  SlicemapVoxelizer voxelizer(test::runtime());
-  const VoxelGrid uniform = voxelizer.run(soup, grid, SlicemapSlicing::kUniform);
-  const VoxelGrid local = voxelizer.run(soup, grid, SlicemapSlicing::kLocal);
+  const VoxelGrid uniform = run_slicemap(soup, grid, SlicemapSlicing::kUniform).grid;
+  const VoxelGrid local = run_slicemap(soup, grid, SlicemapSlicing::kLocal).grid;
   uint64_t missing = 0, extra = 0;
   for (size_t w = 0; w < uniform.occ.size(); ++w) {
     missing += std::popcount(uniform.occ[w] & ~local.occ[w]);
@@ -222,7 +242,7 @@ TEST(Slicemap, WholeGridTriangleIsSplitIntoTiles) {
   const GridSpec grid = unit_grid({200, 180, 50});
   for (SlicemapSlicing s : kBoth) {
     VoxelizeStats stats;
-    expect_exact(soup, grid, s, "whole grid", {}, &stats);
+    expect_exact(soup, grid, s, "whole grid", VoxelizeOptions{}.record_budget_bytes, &stats);
     EXPECT_EQ(stats.copies, 25u * 23u);  // tiles of the clamped centre range 200 x 180
   }
   expect_uniform_equals_center(soup, grid, "whole grid");
@@ -231,11 +251,9 @@ TEST(Slicemap, WholeGridTriangleIsSplitIntoTiles) {
 TEST(Slicemap, BatchesGiveTheSameSlicemap) {
   const TriangleSoup soup = test::random_soup(24, 300, -1.0f, 1.0f, 0.6f);
   const GridSpec grid = fitted(soup, 40);
-  SlicemapOptions tiny;
-  tiny.record_budget_bytes = 64 * 8;
   for (SlicemapSlicing s : kBoth) {
     VoxelizeStats stats;
-    expect_exact(soup, grid, s, "batched", tiny, &stats);
+    expect_exact(soup, grid, s, "batched", 64 * sizeof(SlicemapRecord), &stats);
     EXPECT_GT(stats.batches, 3u);
   }
 }
@@ -251,9 +269,8 @@ TEST(Slicemap, SteepSheetLeavesOneVoxelPerColumn) {
     soup.positions.push_back(glm::vec4(p, 1.0f));
   soup.triangles = {{base, base + 1, base + 2, 0}, {base, base + 2, base + 3, 0}};
   const GridSpec grid = unit_grid({8, 16, 40});
-  SlicemapVoxelizer voxelizer(test::runtime());
-  const VoxelGrid uniform = voxelizer.run(soup, grid, SlicemapSlicing::kUniform);
-  SliceVoxelizer slice(test::runtime());
+  const VoxelGrid uniform = run_slicemap(soup, grid, SlicemapSlicing::kUniform).grid;
+  Voxelizer slice(test::runtime());
   const VoxelGrid conservative = slice.run(soup, grid, VoxelizeOptions{});
   EXPECT_EQ(uniform.voxels_set, 5u * 16u);  // columns i = 0..4 under the sheet, one voxel each
   EXPECT_GT(conservative.voxels_set, 5u * uniform.voxels_set);

@@ -16,12 +16,26 @@
 #include "core/mesh_loader.h"
 #include "test_support.h"
 #include "voxelize/reference_inside.h"
-#include "voxelize/solid_voxelizer.h"
+#include "voxelize/voxelizer.h"
 
 namespace voxr {
 namespace {
 
 constexpr SolidMode kModes[] = {SolidMode::kXor, SolidMode::kLate, SolidMode::kParity, SolidMode::kFlood};
+
+// The solid fill through the Voxelizer: the conservative surface in occ, the fill in inside.
+class SolidRunner {
+ public:
+  VoxelGrid run(const TriangleSoup& soup, const GridSpec& grid, SolidMode mode,
+                VoxelizeStats* stats = nullptr) {
+    VoxelizeOptions options;
+    options.solid = mode;
+    return voxelizer_.run(soup, grid, options, stats);
+  }
+
+ private:
+  Voxelizer voxelizer_{test::runtime()};
+};
 
 GridSpec fitted(const TriangleSoup& soup, uint32_t res) {
   GridRequest r;
@@ -103,9 +117,9 @@ TriangleSoup sphere_with_holes() {
 }
 
 void expect_kernels_equal_reference(const TriangleSoup& soup, const GridSpec& grid, const std::string& name) {
-  SolidVoxelizer solid(test::runtime());
+  SolidRunner solid;
   for (SolidMode mode : kModes) {
-    SolidStats stats;
+    VoxelizeStats stats;
     const VoxelGrid g = solid.run(soup, grid, mode, &stats);
     const ReferenceSolid ref = reference_solid(soup, grid, mode);
     const SolidError e = compare_bits(g.inside, ref.inside);
@@ -175,7 +189,7 @@ TEST(SolidVoxelizer, ParityEqualsExactInsideOnClosedMeshes) {
       {"torus", make_torus()}, {"sphere", make_uv_sphere()}, {"vase", make_vase()}, {"box", make_box()}};
   const std::string bunny = test::mesh_path("bunny.obj");
   if (!bunny.empty()) meshes.push_back({"bunny", load_mesh(bunny)});
-  SolidVoxelizer solid(test::runtime());
+  SolidRunner solid;
   for (const auto& [name, soup] : meshes) {
     ASSERT_TRUE(closed(soup)) << name;
     const GridSpec grid = fitted(soup, name == "bunny" ? 64 : 40);
@@ -185,13 +199,13 @@ TEST(SolidVoxelizer, ParityEqualsExactInsideOnClosedMeshes) {
     EXPECT_EQ(compare_inside(parity, exact).total(), 0u)
         << name << ": " << describe(compare_inside(parity, exact));
     // No odd column on a closed mesh: late filling is parity.
-    SolidStats stats;
+    VoxelizeStats stats;
     const VoxelGrid late = solid.run(soup, grid, SolidMode::kLate, &stats);
     EXPECT_EQ(stats.questionable_columns, 0u) << name;
     EXPECT_EQ(late.inside, parity.inside) << name;
     // xor and flood differ from the exact set only next to the surface: every voxel they get wrong meets
     // the conservative surface.
-    SolidStats flood_stats;
+    VoxelizeStats flood_stats;
     const VoxelGrid flood = solid.run(soup, grid, SolidMode::kFlood, &flood_stats);
     const VoxelGrid xr = solid.run(soup, grid, SolidMode::kXor);
     const SolidError xor_error = compare_inside(xr, exact), flood_error = compare_inside(flood, exact);
@@ -210,7 +224,7 @@ TEST(SolidVoxelizer, ParityEqualsExactInsideOnClosedMeshes) {
 }
 
 TEST(SolidVoxelizer, ParityEqualsExactInsideOnRotatedAndCroppedGrids) {
-  SolidVoxelizer solid(test::runtime());
+  SolidRunner solid;
   const TriangleSoup torus = make_torus();
   GridSpec rotated = fitted(torus, 36);
   const float c = std::cos(0.5f), s = std::sin(0.5f);
@@ -245,7 +259,7 @@ TEST(SolidVoxelizer, TieRulesOnVoxelCentres) {
   const GridSpec grid = fit_grid({}, r);
   ASSERT_EQ(grid.dims, glm::uvec3(8));
   const std::vector<uint32_t> expected = bits_of(grid, block({1, 2, 1}, {6, 7, 6}));
-  SolidVoxelizer solid(test::runtime());
+  SolidRunner solid;
   EXPECT_EQ(compare_bits(solid.run(soup, grid, SolidMode::kParity).inside, expected).total(), 0u);
   EXPECT_EQ(compare_bits(reference_inside_exact(soup, grid), expected).total(), 0u);
   // An octahedron with its six vertices on column centres and edges through them: still exact.
@@ -267,7 +281,7 @@ TEST(SolidVoxelizer, XorJudgesVoxelsAtTheTopOfTheirSlab) {
   // centre rule gives k = 2..6, xor k = 1..5 (one layer extra at the bottom, one missing at the top). At
   // z = 1.3 and 6.2 (lower halves) both give k = 1..5.
   const GridSpec grid = unit_grid({8, 8, 8});
-  SolidVoxelizer solid(test::runtime());
+  SolidRunner solid;
   const TriangleSoup high = make_box({2.2f, 2.2f, 1.7f}, {5.8f, 5.8f, 6.8f});
   const std::vector<uint32_t> high_exact = bits_of(grid, block({2, 2, 2}, {6, 6, 7}));
   EXPECT_EQ(compare_bits(reference_inside_exact(high, grid), high_exact).total(), 0u);
@@ -290,7 +304,7 @@ TEST(SolidVoxelizer, FastWindingNumberEqualsTheDirectSum) {
 
 struct ModeErrors {
   SolidError all, off_surface;  // against the winding-number reference; off_surface: voxels off the shell
-  SolidStats stats;
+  VoxelizeStats stats;
 };
 
 struct HoleReport {
@@ -301,7 +315,7 @@ struct HoleReport {
 
 HoleReport measure_holes(const TriangleSoup& soup, const GridSpec& grid, const char* name) {
   const std::vector<uint32_t> reference = reference_inside_winding(soup, grid);
-  SolidVoxelizer solid(test::runtime());
+  SolidRunner solid;
   HoleReport out;
   out.reference = count_bits(reference);
   std::vector<uint32_t> shell;
@@ -373,9 +387,9 @@ TEST(SolidVoxelizer, SharkWithLargeHoles) {
 TEST(SolidVoxelizer, StatsAndRepeatability) {
   const TriangleSoup soup = test::random_soup(9, 120, -1.0f, 1.0f, 0.5f);
   const GridSpec grid = fitted(soup, 24);
-  SolidVoxelizer solid(test::runtime());
+  SolidRunner solid;
   for (SolidMode mode : kModes) {
-    SolidStats a, b;
+    VoxelizeStats a, b;
     const VoxelGrid first = solid.run(soup, grid, mode, &a);
     const VoxelGrid second = solid.run(soup, grid, mode, &b);
     EXPECT_EQ(first.inside, second.inside) << solid_mode_name(mode);

@@ -4,14 +4,14 @@
 
 #include "core/generators.h"
 #include "test_support.h"
-#include "voxelize/slice_voxelizer.h"
 #include "voxelize/surface_accuracy.h"
+#include "voxelize/voxelizer.h"
 
 namespace voxr {
 namespace {
 
 VoxelGrid voxelize(const TriangleSoup& soup, const GridSpec& grid, RasterMode mode) {
-  SliceVoxelizer voxelizer(test::runtime());
+  Voxelizer voxelizer(test::runtime());
   VoxelizeOptions options;
   options.mode = mode;
   return voxelizer.run(soup, grid, options);

@@ -10,9 +10,11 @@ namespace voxr::test {
 
 namespace {
 // Before any OpenCL call and before the CLI tests start the voxr binary: PoCL compiles each kernel on
-// first use, and a cache in the build tree lets later runs reuse the binaries. Values already set win.
+// first use, and caches in the build tree (PoCL's, and voxr's program cache) let later runs reuse the
+// binaries. Values already set win.
 const bool kEnvironment = [] {
   setenv("POCL_CACHE_DIR", VOXR_BINARY_DIR "/pocl-cache", 0);
+  setenv("VOXR_CACHE_DIR", VOXR_BINARY_DIR "/voxr-cache", 0);
   setenv("VOXR_MESH_DIR", VOXR_SOURCE_DIR "/data/meshes", 0);
   return true;
 }();

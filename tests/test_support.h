@@ -15,7 +15,7 @@
 
 #include "cl/cl_runtime.h"
 #include "core/triangle_soup.h"
-#include "voxelize/voxel_grid.h"
+#include "grid/voxel_grid.h"
 
 namespace voxr::test {
 

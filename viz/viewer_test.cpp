@@ -25,8 +25,8 @@
 
 #include <fmt/format.h>
 
+#include "grid/voxel_grid.h"
 #include "io/volume_writer.h"
-#include "voxelize/voxel_grid.h"
 
 namespace voxr {
 namespace {

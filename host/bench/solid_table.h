@@ -1,5 +1,6 @@
-// Solid voxelization modes measured side by side: for each mesh and resolution, every mode's kernel time
-// (median after a warm-up) and its missing/extra voxels against the exact inside test (closed meshes) or
+// Solid voxelization modes measured side by side: for each mesh and resolution, every mode's fill time
+// (profiled kernels of the solid stages, median after a warm-up; the conservative surface every run also
+// produces is left out) and its missing/extra voxels against the exact inside test (closed meshes) or
 // the generalized winding number (meshes with holes). Voxels on the conservative surface are where the
 // boundary rules legitimately differ, so errors off that shell ("leaks") are reported too.
 #pragma once

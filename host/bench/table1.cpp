@@ -8,43 +8,42 @@
 #include "bench/bench_meshes.h"
 #include "bench/median.h"
 #include "core/error.h"
-#include "voxelize/slice_voxelizer.h"
-#include "voxelize/slicemap_voxelizer.h"
+#include "voxelize/reference_overlap.h"
 #include "voxelize/surface_accuracy.h"
+#include "voxelize/voxelizer.h"
 
 namespace voxr {
 
 namespace {
 
+// The voxelizer options of a core Table 1 method name ("hybrid-conservative", "slice-center", ...).
+VoxelizeOptions table1_options(const std::string& method) {
+  VoxelizeOptions options;
+  if (method == "slicemap-uniform" || method == "slicemap-local") {
+    options.method = VoxelizeMethod::kSlicemap;
+    options.slicing = method == "slicemap-local" ? SlicemapSlicing::kLocal : SlicemapSlicing::kUniform;
+    return options;
+  }
+  const size_t dash = method.find('-');
+  options.method = parse_voxelize_method(method.substr(0, dash));
+  if (dash != std::string::npos) options.mode = parse_raster_mode(method.substr(dash + 1));
+  return options;
+}
+
 // One timed voxelization with the named method.
-VoxelGrid run_method(ClRuntime& cl, const Table1Options& table, const std::string& method,
+VoxelGrid run_method(Voxelizer& voxelizer, const Table1Options& table, const std::string& method,
                      const TriangleSoup& soup, const GridSpec& grid, VoxelizeStats* stats) {
   if (const auto peer = table.peers.find(method); peer != table.peers.end())
     return peer->second(soup, grid, stats);
-  if (method.rfind("slicemap-", 0) == 0) {
-    SlicemapVoxelizer slicemap(cl);
-    return slicemap.run(
-        soup, grid, method == "slicemap-local" ? SlicemapSlicing::kLocal : SlicemapSlicing::kUniform, stats);
-  }
-  VoxelizeOptions options;
-  if (method == "slice-conservative") {
-    options.mode = RasterMode::kConservative;
-  } else if (method == "slice-center") {
-    options.mode = RasterMode::kCenter;
-  } else if (method == "grid") {
-    options.method = VoxelizeMethod::kGrid;
-  } else {
-    fail("unknown Table 1 method '{}'", method);
-  }
-  SliceVoxelizer voxelizer(cl);
-  return voxelizer.run(soup, grid, options, stats);
+  return voxelizer.run(soup, grid, table1_options(method), stats);
 }
 
 }  // namespace
 
 const std::vector<std::string>& table1_methods() {
-  static const std::vector<std::string> methods = {"slice-conservative", "slice-center", "grid",
-                                                   "slicemap-uniform", "slicemap-local"};
+  static const std::vector<std::string> methods = {"hybrid-conservative", "slice-conservative",
+                                                   "slice-center",        "grid",
+                                                   "slicemap-uniform",    "slicemap-local"};
   return methods;
 }
 
@@ -58,9 +57,12 @@ std::vector<Table1Row> run_table1(ClRuntime& cl, const Table1Options& options) {
     if (std::find(table1_methods().begin(), table1_methods().end(), m) == table1_methods().end() &&
         !options.peers.count(m))
       fail(
-          "unknown method '{}' (methods: slice-conservative, slice-center, grid, slicemap-uniform, "
-          "slicemap-local)",
+          "unknown method '{}' (methods: hybrid-conservative, slice-conservative, slice-center, grid, "
+          "slicemap-uniform, slicemap-local)",
           m);
+  Voxelizer voxelizer(cl);
+  for (const std::string& m : options.methods)
+    if (!options.peers.count(m)) voxelizer.prepare(table1_options(m));
   std::vector<Table1Row> rows;
   for (const Table1Model& model : options.models) {
     const BenchMesh mesh = make_bench_mesh(model.mesh);
@@ -68,17 +70,13 @@ std::vector<Table1Row> run_table1(ClRuntime& cl, const Table1Options& options) {
       GridRequest request;
       request.resolution = res;
       const GridSpec grid = fit_grid(mesh.soup.bounds(), request);
-      VoxelGrid exact;
-      if (options.accuracy) {
-        SliceVoxelizer voxelizer(cl);
-        exact = voxelizer.run(mesh.soup, grid, VoxelizeOptions{});
-      }
+      const VoxelGrid exact = options.accuracy ? reference_overlap(mesh.soup, grid) : VoxelGrid{};
       for (const std::string& method : options.methods) {
         std::vector<double> kernels, total;
         VoxelGrid result;
         VoxelizeStats stats;
         for (int r = 0; r < options.warmup + options.repeat; ++r) {
-          result = run_method(cl, options, method, mesh.soup, grid, &stats);
+          result = run_method(voxelizer, options, method, mesh.soup, grid, &stats);
           if (r < options.warmup) continue;
           kernels.push_back(stats.kernels_ms);
           total.push_back(stats.total_ms());

@@ -1,6 +1,7 @@
 // The papers' Table 1, extended: every voxelization method over meshes with the papers' triangle counts and
 // several resolutions, each case timed (medians after a warm-up, from profiling events) and measured for
-// accuracy against the exact triangle/box set (host/voxelize/surface_accuracy.h).
+// accuracy against the exact triangle/box set of the input triangles (host/voxelize/reference_overlap.h,
+// measured by host/voxelize/surface_accuracy.h).
 #pragma once
 
 #include <cstdint>
@@ -12,7 +13,7 @@
 #include "cl/cl_runtime.h"
 #include "core/grid_spec.h"
 #include "core/triangle_soup.h"
-#include "voxelize/slice_voxelizer.h"
+#include "voxelize/voxelizer.h"
 
 namespace voxr {
 
@@ -45,7 +46,7 @@ struct Table1Row {
   uint64_t exact_voxels = 0, false_positives = 0, false_negatives = 0, crossings = 0, tunnels = 0;
 };
 
-// "slice-conservative", "slice-center", "grid", "slicemap-uniform", "slicemap-local".
+// "hybrid-conservative", "slice-conservative", "slice-center", "grid", "slicemap-uniform", "slicemap-local".
 const std::vector<std::string>& table1_methods();
 // Torus 800, ~43K (armadillo), ~97K (elephant), ~655K (shark x64), ~871K (armadillo x16), ~1.09M (bunny x16).
 std::vector<Table1Model> table1_default_models();

@@ -1,7 +1,9 @@
 #include "cl/cl_runtime.h"
 
+#include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -57,33 +59,68 @@ std::string expand_includes(const std::string& source,
 
 }  // namespace
 
-cl::Kernel ClRuntime::kernel(const std::string& file, const std::string& name, const Defines& defines) {
+cl::Program ClRuntime::build_from_source(const std::string& file, const std::string& source,
+                                         const std::string& options) {
+  cl::Program program(context_, source);
+  try {
+    program.build({device_.device}, options.c_str());
+  } catch (const cl::Error& e) {
+    std::string log;
+    try {
+      log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_.device);
+    } catch (const cl::Error&) {
+      log = "(no build log)";
+    }
+    fail("building kernel file {} with options '{}' failed: {} ({})\n{}", file, options,
+         cl_status_name(e.err()), e.err(), log);
+  }
+  return program;
+}
+
+cl::Program& ClRuntime::program(const std::string& file, const Defines& defines) {
   std::string options = "-cl-std=CL1.2";
   if (device_.correctly_rounded_sqrt) options += " -cl-fp32-correctly-rounded-divide-sqrt";
   for (const auto& [key, value] : defines) options += " -D" + key + "=" + value;
-  const std::string cache_key = file + "|" + options;
-  auto it = programs_.find(cache_key);
-  if (it == programs_.end()) {
-    std::set<std::string> seen;
-    const std::string source = expand_includes(
-        load_source(file), [this](const std::string& f) { return load_source(f); }, seen);
-    cl::Program program(context_, source);
+  const std::string memo_key = file + "|" + options;
+  if (auto it = programs_.find(memo_key); it != programs_.end()) return it->second;
+
+  const auto start = std::chrono::steady_clock::now();
+  std::set<std::string> seen;
+  const std::string source = expand_includes(
+      load_source(file), [this](const std::string& f) { return load_source(f); }, seen);
+  const std::string cache_key = fmt::format("{}\n{}\n{}\n{}\n{}", device_.platform_name, device_.name,
+                                            device_.driver_version, options, source);
+  std::optional<cl::Program> program;
+  if (const auto binary = program_cache_.load(cache_key)) {
     try {
-      program.build({device_.device}, options.c_str());
-    } catch (const cl::Error& e) {
-      std::string log;
-      try {
-        log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_.device);
-      } catch (const cl::Error&) {
-        log = "(no build log)";
-      }
-      fail("building kernel file {} with options '{}' failed: {} ({})\n{}", file, options,
-           cl_status_name(e.err()), e.err(), log);
+      cl::Program from_binary(context_, {device_.device}, cl::Program::Binaries{*binary});
+      from_binary.build({device_.device}, options.c_str());
+      program = std::move(from_binary);
+    } catch (const cl::Error&) {
+      // A stale or corrupt entry: build from source below and store a fresh one.
     }
-    it = programs_.emplace(cache_key, std::move(program)).first;
   }
+  if (!program) {
+    program = build_from_source(file, source, options);
+    try {
+      const std::vector<std::vector<unsigned char>> binaries = program->getInfo<CL_PROGRAM_BINARIES>();
+      if (binaries.size() == 1) program_cache_.store(cache_key, binaries[0]);
+    } catch (const cl::Error&) {
+      // Drivers that cannot return binaries simply build from source every time.
+    }
+  }
+  build_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return programs_.emplace(memo_key, std::move(*program)).first->second;
+}
+
+void ClRuntime::build_programs(const std::vector<ProgramSpec>& specs) {
+  for (const ProgramSpec& spec : specs) program(spec.file, spec.defines);
+}
+
+cl::Kernel ClRuntime::kernel(const std::string& file, const std::string& name, const Defines& defines) {
+  cl::Program& built = program(file, defines);
   try {
-    return cl::Kernel(it->second, name.c_str());
+    return cl::Kernel(built, name.c_str());
   } catch (const cl::Error& e) {
     throw Error(describe_cl_error(e, "creating kernel " + name + " from " + file));
   }

@@ -14,11 +14,18 @@
 #include "cl/cl_error.h"
 #include "cl/device.h"
 #include "cl/profiler.h"
+#include "cl/program_cache.h"
 #include "core/error.h"
 
 namespace voxr {
 
 using Defines = std::vector<std::pair<std::string, std::string>>;
+
+// One program: a kernel file and the defines it is built with.
+struct ProgramSpec {
+  std::string file;
+  Defines defines;
+};
 
 class ClRuntime {
  public:
@@ -30,18 +37,25 @@ class ClRuntime {
   cl::CommandQueue& queue() { return queue_; }
   Profiler& profiler() { return profiler_; }
 
-  // Kernel `name` from kernel file `file` (e.g. "vox_raster.cl") built with `defines`. Programs are
-  // cached per (file, defines); a failed build throws voxr::Error with the full build log.
+  // Kernel `name` from kernel file `file` (e.g. "vox_raster.cl") built with `defines`. Programs are built
+  // once per (file, defines) and process, from the on-disk ProgramCache when it holds them; a failed build
+  // throws voxr::Error with the full build log.
   cl::Kernel kernel(const std::string& file, const std::string& name, const Defines& defines = {});
+  // Builds (or loads) the programs now, so that a timed run that follows pays nothing for them.
+  void build_programs(const std::vector<ProgramSpec>& specs);
+  // Milliseconds spent building or loading programs so far.
+  double build_ms() const { return build_ms_; }
 
   // Sets the arguments in order and enqueues `global` work items (rounded up to `local`), recording the
-  // event under `name`. Debug builds finish the queue and check the status after every launch.
+  // event under `name`. Debug builds finish the queue and check the status after every launch. An
+  // argument with a member set_kernel_args(cl::Kernel&, cl_uint& index) sets several consecutive
+  // parameters (e.g. DeviceVoxelGrid::view_args() for VOXR_GRID_VIEW_PARAMS).
   template <typename... Args>
   void launch(const std::string& name, cl::Kernel& kernel, size_t global, size_t local, const Args&... args) {
     if (global == 0) return;
     try {
       cl_uint index = 0;
-      (kernel.setArg(index++, args), ...);
+      (set_arg(kernel, index, args), ...);
       enqueue(name, kernel, global, local);
     } catch (const cl::Error& e) {
       throw Error(describe_cl_error(e, "launching kernel " + name));
@@ -59,14 +73,26 @@ class ClRuntime {
   void finish(const std::string& context = "running kernels");
 
  private:
+  template <typename T>
+  static void set_arg(cl::Kernel& kernel, cl_uint& index, const T& arg) {
+    if constexpr (requires { arg.set_kernel_args(kernel, index); })
+      arg.set_kernel_args(kernel, index);
+    else
+      kernel.setArg(index++, arg);
+  }
   void enqueue(const std::string& name, cl::Kernel& kernel, size_t global, size_t local);
   std::string load_source(const std::string& file) const;
+  cl::Program& program(const std::string& file, const Defines& defines);
+  cl::Program build_from_source(const std::string& file, const std::string& source,
+                                const std::string& options);
 
   DeviceInfo device_;
   cl::Context context_;
   cl::CommandQueue queue_;
   Profiler profiler_;
-  std::map<std::string, cl::Program> programs_;
+  std::map<std::string, cl::Program> programs_;  // by file and build options
+  ProgramCache program_cache_;
+  double build_ms_ = 0.0;
 };
 
 }  // namespace voxr

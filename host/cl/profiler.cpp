@@ -10,7 +10,14 @@ void Profiler::resolve() {
   for (Pending& p : pending_) {
     const cl_ulong start = p.event.getProfilingInfo<CL_PROFILING_COMMAND_START>();
     const cl_ulong end = p.event.getProfilingInfo<CL_PROFILING_COMMAND_END>();
-    times_[p.name].push_back(double(end - start) * 1e-6);
+    Series& series = times_[p.name];
+    const double ms = double(end - start) * 1e-6;
+    if (series.recent.size() < kWindow)
+      series.recent.push_back(ms);
+    else
+      series.recent[series.count % kWindow] = ms;
+    ++series.count;
+    series.total_ms += ms;
   }
   pending_.clear();
 }
@@ -22,11 +29,11 @@ void Profiler::clear() {
 
 std::map<std::string, Profiler::Stat> Profiler::stats() const {
   std::map<std::string, Stat> out;
-  for (const auto& [name, ms] : times_) {
+  for (const auto& [name, series] : times_) {
     Stat s;
-    s.count = ms.size();
-    for (double t : ms) s.total_ms += t;
-    std::vector<double> sorted = ms;
+    s.count = series.count;
+    s.total_ms = series.total_ms;
+    std::vector<double> sorted = series.recent;
     std::sort(sorted.begin(), sorted.end());
     const size_t n = sorted.size();
     s.median_ms = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
@@ -55,16 +62,12 @@ Profiler::Split Profiler::since(const std::map<std::string, Stat>& before) const
 
 double Profiler::total_ms(const std::string& name) const {
   const auto it = times_.find(name);
-  if (it == times_.end()) return 0.0;
-  double sum = 0.0;
-  for (double t : it->second) sum += t;
-  return sum;
+  return it == times_.end() ? 0.0 : it->second.total_ms;
 }
 
 double Profiler::sum_ms() const {
   double sum = 0.0;
-  for (const auto& [name, ms] : times_)
-    for (double t : ms) sum += t;
+  for (const auto& [name, series] : times_) sum += series.total_ms;
   return sum;
 }
 

@@ -1,4 +1,6 @@
-// Per-kernel (and per-transfer) timings from OpenCL profiling events: count, total and median in ms.
+// Per-kernel (and per-transfer) timings from OpenCL profiling events: count and total over the whole run,
+// median over the last kWindow events of each name, so a process that runs frame after frame keeps a
+// bounded amount of memory.
 #pragma once
 
 #include <CL/opencl.hpp>
@@ -12,10 +14,11 @@ namespace voxr {
 class Profiler {
  public:
   struct Stat {
-    size_t count = 0;
-    double total_ms = 0.0;
-    double median_ms = 0.0;
+    size_t count = 0;        // events ever recorded under the name
+    double total_ms = 0.0;   // their summed time
+    double median_ms = 0.0;  // median of the last kWindow
   };
+  static constexpr size_t kWindow = 256;
 
   // Remembers an event; its time is read by resolve() once the queue has finished.
   void record(const std::string& name, const cl::Event& event) { pending_.push_back({name, event}); }
@@ -43,8 +46,13 @@ class Profiler {
     std::string name;
     cl::Event event;
   };
+  struct Series {
+    size_t count = 0;
+    double total_ms = 0.0;
+    std::vector<double> recent;  // ring buffer of the last kWindow times
+  };
   std::vector<Pending> pending_;
-  std::map<std::string, std::vector<double>> times_;
+  std::map<std::string, Series> times_;
 };
 
 }  // namespace voxr

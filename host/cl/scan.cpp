@@ -30,6 +30,13 @@ Defines scan_defines(ScanKind kind) {
 
 }  // namespace
 
+std::vector<ProgramSpec> scan_programs() {
+  std::vector<ProgramSpec> specs;
+  for (ScanKind kind : {ScanKind::kUintToUlong, ScanKind::kRankedWords, ScanKind::kUlongToUlong})
+    specs.push_back({"scan.cl", scan_defines(kind)});
+  return specs;
+}
+
 uint64_t exclusive_scan(ClRuntime& cl, ScanKind kind, const cl::Buffer& in, cl::Buffer& out, uint64_t n,
                         const std::string& name) {
   if (n == 0) return 0;

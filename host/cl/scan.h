@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "cl/cl_runtime.h"
 
@@ -13,6 +14,9 @@ enum class ScanKind {
   kRankedWords,   // uint occupancy words -> ulong (rank of the word's first set bit << 32) | word
   kUlongToUlong,  // ulong -> ulong (the recursion over tile totals)
 };
+
+// The programs exclusive_scan builds (every kind), for building them ahead of timed work.
+std::vector<ProgramSpec> scan_programs();
 
 // Scans `n` elements of `in` into `out` and returns the grand total (exact in 64 bits even where `out`
 // holds 32-bit values). Blocks until the total is known.

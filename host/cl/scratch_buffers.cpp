@@ -4,15 +4,14 @@
 
 namespace voxr {
 
-cl::Buffer ScratchBuffers::get(const std::string& what, uint64_t bytes) {
-  bytes = std::max<uint64_t>(bytes, 4);  // OpenCL has no empty buffers
-  Slot& slot = slots_[what];
-  if (slot.bytes < bytes) {
-    slot.buffer = cl::Buffer();  // release the old one first
-    slot.buffer = cl_.buffer(bytes, what);
-    slot.bytes = bytes;
+cl::Buffer& GrowingBuffer::ensure(ClRuntime& cl, uint64_t need, const std::string& what) {
+  need = std::max<uint64_t>(need, 4);  // OpenCL has no empty buffers
+  if (bytes < need) {
+    buffer = cl::Buffer();  // release the old one first
+    buffer = cl.buffer(need, what);
+    bytes = need;
   }
-  return slot.buffer;
+  return buffer;
 }
 
 }  // namespace voxr

@@ -1,5 +1,5 @@
-// voxr bench voxelize: the slice voxelizer over meshes x resolutions, medians of repeated runs after a
-// warm-up, one CSV row per case (device, counts, per-stage ms, totals with and without the upload).
+// voxr bench: voxelize (fresh process, job and frame figures: cli/bench_voxelize.h), table1 (the papers'
+// Table 1, every method), solid (the solid fill modes).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -10,96 +10,17 @@
 #include "bench/median.h"
 #include "bench/solid_table.h"
 #include "bench/table1.h"
+#include "bench/voxelize_cases.h"
 #ifdef VOXR_WITH_OPENVDB
 #include "peers/openvdb_peer.h"
 #endif
 #include "cl/cl_runtime.h"
+#include "cli/bench_voxelize.h"
 #include "cli/commands.h"
-#include "voxelize/slice_voxelizer.h"
 
 namespace voxr::cli {
 
 namespace {
-
-struct BenchArgs {
-  std::vector<std::string> meshes = default_bench_meshes();
-  std::vector<uint32_t> resolutions = {128, 256, 512, 1024};
-  std::string mode = "conservative";
-  std::string channels = "occ";
-  std::string device;
-  std::string out;
-  int repeat = 5;
-  int warmup = 1;
-};
-
-const char* const kStages[] = {"clear",  "setup", "scan",       "expand",
-                               "raster", "rank",  "attributes", "finalize"};
-
-int run_bench_voxelize(const BenchArgs& args) {
-  ClRuntime cl(args.device);
-  VoxelizeOptions options;
-  options.mode = parse_raster_mode(args.mode);
-  options.channels = ChannelSet::parse(args.channels);
-  if (options.channels.has(Channel::kInside))
-    fail("--channels inside comes from solid fill: use voxr bench solid");
-  SliceVoxelizer voxelizer(cl);
-
-  std::string csv = "device,driver,mesh,triangles,res,dims,mode,channels,copies,voxels,repeats";
-  for (const char* s : kStages) csv += fmt::format(",{}_ms", s);
-  csv += ",upload_ms,kernels_ms,readback_ms,total_ms,total_no_upload_ms\n";
-  fmt::print("device: {} (driver {})\n", cl.device().label(), cl.device().driver_version);
-  fmt::print("{:<14} {:>9} {:>5} {:>16} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n", "mesh", "tris", "res", "dims",
-             "copies", "voxels", "raster", "kernels", "total", "no upload");
-  for (const std::string& name : args.meshes) {
-    const BenchMesh mesh = make_bench_mesh(name);
-    for (uint32_t res : args.resolutions) {
-      GridRequest request;
-      request.resolution = res;
-      const GridSpec grid = fit_grid(mesh.soup.bounds(), request);
-      std::vector<VoxelizeStats> runs;
-      for (int r = 0; r < args.warmup + args.repeat; ++r) {
-        VoxelizeStats stats;
-        voxelizer.run(mesh.soup, grid, options, &stats);
-        if (r >= args.warmup) runs.push_back(stats);
-      }
-      auto med = [&](auto get) {
-        std::vector<double> v;
-        for (const VoxelizeStats& s : runs) v.push_back(get(s));
-        return median(v);
-      };
-      const VoxelizeStats& s0 = runs.front();
-      const double total = med([](const VoxelizeStats& s) { return s.total_ms(); });
-      const double no_upload = med([](const VoxelizeStats& s) { return s.kernels_ms + s.readback_ms; });
-      const double kernels = med([](const VoxelizeStats& s) { return s.kernels_ms; });
-      const double raster = med([](const VoxelizeStats& s) {
-        const auto it = s.stage_ms.find("raster");
-        return it == s.stage_ms.end() ? 0.0 : it->second;
-      });
-      const std::string dims = fmt::format("{}x{}x{}", grid.dims.x, grid.dims.y, grid.dims.z);
-      csv += fmt::format("\"{}\",\"{}\",{},{},{},{},{},\"{}\",{},{},{}", cl.device().name,
-                         cl.device().driver_version, name, s0.triangles, res, dims, args.mode,
-                         options.channels.to_string(), s0.copies, s0.voxels_set, runs.size());
-      for (const char* stage : kStages)
-        csv += fmt::format(",{:.4f}", med([&](const VoxelizeStats& s) {
-                             const auto it = s.stage_ms.find(stage);
-                             return it == s.stage_ms.end() ? 0.0 : it->second;
-                           }));
-      csv += fmt::format(",{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}\n",
-                         med([](const VoxelizeStats& s) { return s.upload_ms; }), kernels,
-                         med([](const VoxelizeStats& s) { return s.readback_ms; }), total, no_upload);
-      fmt::print("{:<14} {:>9} {:>5} {:>16} {:>9} {:>9} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f}\n", name,
-                 s0.triangles, res, dims, s0.copies, s0.voxels_set, raster, kernels, total, no_upload);
-      std::fflush(stdout);
-    }
-  }
-  if (!args.out.empty()) {
-    std::ofstream out(args.out);
-    out << csv;
-    if (!out) fail("{}: cannot write the CSV", args.out);
-    fmt::print("wrote {}\n", args.out);
-  }
-  return 0;
-}
 
 // The core methods plus the CPU peers this build has.
 std::vector<std::string> default_table1_methods() {
@@ -193,8 +114,10 @@ Command add_bench(CLI::App& app) {
   CLI::App* sub =
       app.add_subcommand("bench", "Benchmarks (medians of repeated runs, profiled on the device)");
   sub->require_subcommand(1);
-  auto args = std::make_shared<BenchArgs>();
-  CLI::App* vox = sub->add_subcommand("voxelize", "Slice voxelizer over meshes x resolutions -> CSV");
+  auto args = std::make_shared<BenchVoxelizeArgs>();
+  CLI::App* vox = sub->add_subcommand(
+      "voxelize",
+      "Fresh-process, in-process job and per-frame times over meshes x cases x resolutions -> CSV");
   vox->add_option("--meshes", args->meshes,
                   "benchmark meshes (torus, bunny, armadillo, ...; BASExN subdivides)")
       ->delimiter(',')
@@ -203,15 +126,20 @@ Command add_bench(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::Range(1u, kMaxGridDim))
       ->capture_default_str();
-  vox->add_option("--mode", args->mode, "conservative or center")->capture_default_str();
-  vox->add_option("--channels", args->channels, "channels to produce")->capture_default_str();
+  std::string cases;
+  for (const VoxelizeCase& c : voxelize_cases()) cases += (cases.empty() ? "" : ", ") + c.name;
+  vox->add_option("--cases", args->cases, "cases: " + cases)->delimiter(',')->capture_default_str();
   vox->add_option("--device", args->device, "OpenCL device P:D or name substring");
   vox->add_option("--out", args->out, "CSV file");
-  vox->add_option("--repeat", args->repeat, "timed runs per case (median reported)")
+  vox->add_option("--write", args->write, "fresh processes also write -o out.EXT (e.g. binvox)");
+  vox->add_option("--repeat", args->repeat, "timed frame and job runs per case (median reported)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   vox->add_option("--warmup", args->warmup, "untimed runs first")
       ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  vox->add_option("--fresh", args->fresh, "fresh `voxr voxelize` processes per case (0: none)")
+      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   auto table = std::make_shared<Table1Args>();
   CLI::App* t1 = sub->add_subcommand(

@@ -1,5 +1,9 @@
-// voxr voxelize INPUT -o OUT: mesh or scene -> voxel grid with the slice voxelizer, written by extension,
-// with a summary (and optional JSON report) of counts, memory and per-stage times.
+// voxr voxelize INPUT -o OUT: mesh or scene -> voxel grid (any method, rule, channels and solid fill, on one
+// upload), written by extension, with a summary (and optional JSON report) of counts, memory and times.
+//
+// A fresh process pays only what it must: the OpenCL runtime is opened and every program the run needs is
+// built (or loaded from the program cache) on a second thread while the mesh is read, and the timed
+// voxelization starts after both.
 #include <fmt/format.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -8,9 +12,12 @@
 
 #include <cctype>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <future>
+#include <memory>
 
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
@@ -19,9 +26,7 @@
 #include "core/mesh_topology.h"
 #include "core/scene.h"
 #include "io/volume_writer.h"
-#include "voxelize/slice_voxelizer.h"
-#include "voxelize/slicemap_voxelizer.h"
-#include "voxelize/solid_voxelizer.h"
+#include "voxelize/voxelizer.h"
 
 namespace voxr::cli {
 
@@ -32,8 +37,8 @@ struct VoxelizeArgs {
   std::string output;
   uint32_t res = 0;
   std::string dims, bounds;
-  std::string method = "slice";
-  std::string mode;     // empty: conservative (slice, grid)
+  std::string method = "hybrid";
+  std::string mode;     // empty: conservative
   std::string slicing;  // empty: uniform (slicemap)
   std::string solid;    // empty: surface only
   std::string channels = "occ";
@@ -45,11 +50,21 @@ struct VoxelizeArgs {
   bool view = false;
 };
 
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  return ext;
+}
+
 // --view: voxr-view is this executable's neighbour (CMake puts both in the build folder).
 std::filesystem::path find_viewer(const std::string& output) {
   if (output.empty()) fail("--view needs -o OUT: the viewer opens the written volume");
-  std::string ext = std::filesystem::path(output).extension().string();
-  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  const std::string ext = lower_extension(output);
   if (ext != ".vti" && ext != ".nrrd")
     fail("--view: voxr-view reads .vti and .nrrd outputs, not '{}'", output);
   std::error_code ec;
@@ -74,22 +89,52 @@ int run_viewer(const std::filesystem::path& viewer, const std::string& volume) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 
+// Options from the flags, validated before any file is read.
+VoxelizeOptions voxelize_options(const VoxelizeArgs& args) {
+  VoxelizeOptions options;
+  options.method = parse_voxelize_method(args.method);
+  const MethodInfo& info = method_info(options.method);
+  if (!info.modes && !args.mode.empty())
+    fail("--mode does not apply to --method {} (it samples column centres)", info.name);
+  if (options.method != VoxelizeMethod::kSlicemap && !args.slicing.empty())
+    fail("--slicing applies to --method slicemap only");
+  options.slicing = parse_slicemap_slicing(args.slicing.empty() ? "uniform" : args.slicing);
+  options.mode = parse_raster_mode(args.mode.empty() ? "conservative" : args.mode);
+  options.channels = ChannelSet::parse(args.channels);
+  if (!args.solid.empty()) options.solid = parse_solid_mode(args.solid);
+  options.rows_per_copy = args.rows_per_copy;
+  options.validate();
+  return options;
+}
+
+struct Phases {
+  double load_ms = 0.0;      // reading the input, validating it, fitting the grid
+  double wait_ms = 0.0;      // waiting for the runtime and programs after the load
+  double runtime_ms = 0.0;   // opening the OpenCL device (in the background)
+  double programs_ms = 0.0;  // building or loading the programs (in the background)
+  double write_ms = 0.0;
+  double process_ms = 0.0;  // from the start of the command to the report
+};
+
 nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const GridSpec& grid,
-                           const VoxelizeOptions& options, const VoxelizeStats& stats) {
+                           const VoxelizeOptions& options, const VoxelizeStats& stats, const Phases& phases,
+                           const ChannelSet& channels) {
   nlohmann::json stages = nlohmann::json::object();
   for (const auto& [name, ms] : stats.stage_ms) stages[name] = ms;
-  return {
+  nlohmann::json report = {
       {"input", args.input.empty() ? "default scene" : args.input},
       {"device", cl.device().label()},
       {"driver", cl.device().driver_version},
-      {"method", args.method},
-      {"mode", args.method == "slicemap" ? "center" : raster_mode_name(options.mode)},
-      {"channels", options.channels.to_string()},
+      {"method", method_info(options.method).name},
+      {"mode", options.method == VoxelizeMethod::kSlicemap ? "center" : raster_mode_name(options.mode)},
+      {"channels", channels.to_string()},
       {"triangles", stats.triangles},
       {"triangles_split", stats.triangles_split},
+      {"direct_triangles", stats.direct_triangles},
       {"dims", {grid.dims.x, grid.dims.y, grid.dims.z}},
       {"voxel_size", grid.voxel_size},
       {"origin", {grid.origin.x, grid.origin.y, grid.origin.z}},
+      {"margin", stats.margin},
       {"copies", stats.copies},
       {"batches", stats.batches},
       {"voxels_set", stats.voxels_set},
@@ -100,17 +145,61 @@ nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const 
         {"readback", stats.readback_ms},
         {"total", stats.total_ms()},
         {"wall", stats.wall_ms},
-        {"stages", stages}}},
+        {"stages", stages},
+        {"load", phases.load_ms},
+        {"runtime", phases.runtime_ms},
+        {"programs", phases.programs_ms},
+        {"wait", phases.wait_ms},
+        {"write", phases.write_ms},
+        {"process", phases.process_ms}}},
   };
+  if (options.method == VoxelizeMethod::kSlicemap) report["slicing"] = slicemap_slicing_name(options.slicing);
+  if (options.solid)
+    report["solid"] = {{"mode", solid_mode_name(*options.solid)},
+                       {"inside_voxels", stats.inside_voxels},
+                       {"questionable_columns", stats.questionable_columns},
+                       {"repair_iterations", stats.repair_iterations},
+                       {"flood_iterations", stats.flood_iterations}};
+  return report;
+}
+
+// The OpenCL runtime with the run's programs built, made on a second thread.
+struct Prepared {
+  std::unique_ptr<ClRuntime> cl;
+  std::unique_ptr<Voxelizer> voxelizer;
+  double runtime_ms = 0.0, programs_ms = 0.0;
+};
+
+Prepared prepare(const std::string& device, const VoxelizeOptions& options) {
+  const auto start = Clock::now();
+  Prepared p;
+  p.cl = std::make_unique<ClRuntime>(device);
+  p.runtime_ms = ms_since(start);
+  p.voxelizer = std::make_unique<Voxelizer>(*p.cl);
+  p.voxelizer->prepare(options);
+  p.programs_ms = p.cl->build_ms();
+  return p;
 }
 
 int run_voxelize(const VoxelizeArgs& args) {
+  const auto process_start = Clock::now();
   if (args.res && !args.dims.empty()) fail("--res and --dims are exclusive; give one");
   if (!args.report.empty()) check_output_path(args.report);
   const std::filesystem::path viewer = args.view ? find_viewer(args.output) : std::filesystem::path();
+  VoxelizeOptions options = voxelize_options(args);
+  const bool tty = isatty(fileno(stderr)) && !args.quiet;
+  if (tty)
+    options.progress = [](const std::string& stage) { fmt::print(stderr, "\rvoxelizing: {:<12}", stage); };
+
+  // The device and the programs in the background while the input is read.
+  std::future<Prepared> background = std::async(std::launch::async, prepare, args.device, options);
+  Phases phases;
+  auto load_start = Clock::now();
+  if (tty) fmt::print(stderr, "\rreading {}...", args.input.empty() ? "the default scene" : args.input);
   const Scene scene = args.input.empty() ? default_scene() : load_input(args.input);
   const TriangleSoup soup = scene_triangles(scene);
   const size_t degenerate = validate_soup(soup, scene.source);
+  const Bounds bounds = soup.bounds();
 
   GridRequest request = scene.grid;
   if (args.res) {
@@ -119,77 +208,51 @@ int run_voxelize(const VoxelizeArgs& args) {
   }
   if (!args.dims.empty()) request.dims = parse_dims(args.dims, "--dims");
   if (!args.bounds.empty()) request.bounds = parse_bounds(args.bounds, "--bounds");
-  const GridSpec grid = fit_grid(soup.bounds(), request);
+  fit_request_to_format(request, args.output);
+  const GridSpec grid = fit_grid(bounds, request);
   if (!args.output.empty()) check_volume_output(args.output, grid.dims);
 
-  VoxelizeOptions options;
-  const bool slicemap = args.method == "slicemap";
-  if (args.method == "grid") {
-    options.method = VoxelizeMethod::kGrid;
-  } else if (!slicemap && args.method != "slice") {
-    fail("unknown --method '{}' (methods: slice, grid, slicemap)", args.method);
-  }
-  if (slicemap && !args.mode.empty())
-    fail("--mode does not apply to --method slicemap (it samples column centres)");
-  if (!slicemap && !args.slicing.empty()) fail("--slicing applies to --method slicemap only");
-  const SlicemapSlicing slicing = parse_slicemap_slicing(args.slicing.empty() ? "uniform" : args.slicing);
-  options.mode = parse_raster_mode(args.mode.empty() ? "conservative" : args.mode);
-  options.channels = ChannelSet::parse(args.channels);
-  if (slicemap && options.channels.attributes())
-    fail("--method slicemap is binary: it produces the occ channel only (got --channels {})", args.channels);
-  if (options.channels.has(Channel::kInside) && args.solid.empty())
-    fail("the inside channel comes from solid voxelization: add --solid xor|late|parity|flood");
-  std::optional<SolidMode> solid;
-  if (!args.solid.empty()) {
-    solid = parse_solid_mode(args.solid);
-    if (args.method != "slice" || options.channels.attributes())
-      fail("--solid produces the occ and inside channels with its own kernels: drop --method and --channels");
+  bool refit = false;
+  if (options.solid == SolidMode::kParity || options.solid == SolidMode::kXor) {
     const MeshTopology topology = mesh_topology(soup);
-    if ((*solid == SolidMode::kParity || *solid == SolidMode::kXor) && !topology.closed()) {
+    if (!topology.closed()) {
       // Column parity needs a closed surface. Late filling repairs the columns that cross a hole from their
       // neighbours: on the holed test meshes it stays within a few voxels of the winding-number reference,
       // where flood fill loses the interior once a hole is wider than a voxel (bench/results/solid-*).
       fmt::print(
           stderr,
-          "voxr: warning: {} is not closed ({} boundary and {} non-manifold edges); --solid {} would leak "
+          "{}voxr: warning: {} is not closed ({} boundary and {} non-manifold edges); --solid {} would leak "
           "through the holes, using --solid late\n",
-          scene.source, topology.boundary, topology.nonmanifold, args.solid);
-      solid = SolidMode::kLate;
+          tty ? "\r" : "", scene.source, topology.boundary, topology.nonmanifold, args.solid);
+      options.solid = SolidMode::kLate;
+      refit = true;
     }
   }
-  options.rows_per_copy = args.rows_per_copy;
-  const bool tty = isatty(fileno(stderr)) && !args.quiet;
-  if (tty)
-    options.progress = [](const std::string& stage) { fmt::print(stderr, "\rvoxelizing: {:<12}", stage); };
+  phases.load_ms = ms_since(load_start);
 
-  ClRuntime cl(args.device);
+  const auto wait_start = Clock::now();
+  Prepared prepared = background.get();
+  phases.wait_ms = ms_since(wait_start);
+  phases.runtime_ms = prepared.runtime_ms;
+  phases.programs_ms = prepared.programs_ms;
+  ClRuntime& cl = *prepared.cl;
+  Voxelizer& voxelizer = *prepared.voxelizer;
+  if (refit) voxelizer.prepare(options);
+
   VoxelizeStats stats;
-  SolidStats solid_stats;
-  const VoxelGrid result = solid      ? SolidVoxelizer(cl).run(soup, grid, *solid, &solid_stats)
-                           : slicemap ? SlicemapVoxelizer(cl).run(soup, grid, slicing, &stats)
-                                      : SliceVoxelizer(cl).run(soup, grid, options, &stats);
-  if (solid) {
-    stats.triangles = soup.triangle_count();
-    stats.voxels_set = result.voxels_set;
-    stats.kernels_ms = solid_stats.kernels_ms;
-    stats.stage_ms = solid_stats.stage_ms;
-  }
-  if (tty) fmt::print(stderr, "\r{:<32}\r", "");
+  const VoxelGrid result = voxelizer.run(soup, grid, options, &stats, &bounds);
+  if (tty) fmt::print(stderr, "\r{:<40}\r", "");
 
   std::vector<std::filesystem::path> written;
   if (!args.output.empty()) {
+    const auto write_start = Clock::now();
     if (tty) fmt::print(stderr, "writing {}...", args.output);
     written = write_volume(result, args.output);
     if (tty) fmt::print(stderr, "\r{:<60}\r", "");
+    phases.write_ms = ms_since(write_start);
   }
-  nlohmann::json report = make_report(args, cl, grid, options, stats);
-  report["channels"] = result.channels.to_string();
-  if (solid) {
-    report["solid"] = {{"mode", solid_mode_name(*solid)},
-                       {"inside_voxels", solid_stats.inside_voxels},
-                       {"questionable_columns", solid_stats.questionable_columns},
-                       {"flood_iterations", solid_stats.flood_iterations}};
-  }
+  phases.process_ms = ms_since(process_start);
+  const nlohmann::json report = make_report(args, cl, grid, options, stats, phases, result.channels);
   if (!args.report.empty()) {
     std::ofstream out(args.report);
     out << report.dump(2) << "\n";
@@ -198,29 +261,38 @@ int run_voxelize(const VoxelizeArgs& args) {
   if (!args.quiet) {
     fmt::print("input      {}\n", scene.source);
     fmt::print("device     {}\n", cl.device().label());
-    fmt::print("triangles  {} ({} degenerate, {} split)\n", stats.triangles, degenerate,
-               stats.triangles_split);
-    const std::string rule = solid      ? fmt::format("solid {}", solid_mode_name(*solid))
-                             : slicemap ? fmt::format("slicemap {}", slicemap_slicing_name(slicing))
-                                        : fmt::format("{} {}", args.method, raster_mode_name(options.mode));
-    fmt::print("grid       {} x {} x {}, voxel {:.6g}, {}, channels {}\n", grid.dims.x, grid.dims.y,
-               grid.dims.z, grid.voxel_size, rule, result.channels.to_string());
-    if (solid) {
-      fmt::print("inside     {} voxels ({} questionable columns, {} flood rounds)\n",
-                 solid_stats.inside_voxels, solid_stats.questionable_columns, solid_stats.flood_iterations);
-    } else {
-      fmt::print("copies     {} in {} batch(es), {} raster work items\n", stats.copies, stats.batches,
-                 stats.work_items);
-      fmt::print("voxels set {} ({:.3f}% of {})\n", stats.voxels_set,
-                 100.0 * double(stats.voxels_set) / double(grid.voxel_count()), grid.voxel_count());
-      fmt::print("memory     {:.1f} MiB on the device\n", double(stats.device_bytes) / (1 << 20));
-    }
-    fmt::print("time       upload {:.2f} ms + kernels {:.2f} ms + readback {:.2f} ms = {:.2f} ms\n",
-               stats.upload_ms, stats.kernels_ms, stats.readback_ms, stats.total_ms());
+    fmt::print("triangles  {} ({} degenerate, {} split", stats.triangles, degenerate, stats.triangles_split);
+    if (options.method == VoxelizeMethod::kHybrid)
+      fmt::print(", {} direct, {} by slice duplication", stats.direct_triangles,
+                 stats.triangles - stats.direct_triangles);
+    fmt::print(")\n");
+    const std::string rule =
+        options.method == VoxelizeMethod::kSlicemap
+            ? fmt::format("slicemap {}", slicemap_slicing_name(options.slicing))
+            : fmt::format("{} {}", method_info(options.method).name, raster_mode_name(options.mode));
+    fmt::print("grid       {} x {} x {}, voxel {:.6g}, {}{}, channels {}\n", grid.dims.x, grid.dims.y,
+               grid.dims.z, grid.voxel_size, rule,
+               options.solid ? fmt::format(", solid {}", solid_mode_name(*options.solid)) : "",
+               result.channels.to_string());
+    fmt::print("copies     {} in {} batch(es), {} raster work items\n", stats.copies, stats.batches,
+               stats.work_items);
+    fmt::print("voxels set {} ({:.3f}% of {})\n", stats.voxels_set,
+               100.0 * double(stats.voxels_set) / double(grid.voxel_count()), grid.voxel_count());
+    if (options.solid)
+      fmt::print("inside     {} voxels ({} questionable columns, {} flood rounds)\n", stats.inside_voxels,
+                 stats.questionable_columns, stats.flood_iterations);
+    fmt::print("memory     {:.1f} MiB on the device\n", double(stats.device_bytes) / (1 << 20));
+    fmt::print(
+        "time       upload {:.2f} ms + kernels {:.2f} ms + readback {:.2f} ms = {:.2f} ms (wall {:.2f} ms)\n",
+        stats.upload_ms, stats.kernels_ms, stats.readback_ms, stats.total_ms(), stats.wall_ms);
     std::string stages;
     for (const auto& [name, ms] : stats.stage_ms)
       stages += fmt::format("{}{} {:.2f}", stages.empty() ? "" : ", ", name, ms);
     fmt::print("stages ms  {}\n", stages);
+    fmt::print(
+        "process ms load {:.1f}, device {:.1f} + programs {:.1f} (waited {:.1f}), write {:.1f}, all {:.1f}\n",
+        phases.load_ms, phases.runtime_ms, phases.programs_ms, phases.wait_ms, phases.write_ms,
+        phases.process_ms);
     for (const auto& path : written) fmt::print("wrote      {}\n", path.string());
   }
   if (args.profile) fmt::print("\n{}", cl.profiler().table());
@@ -233,24 +305,27 @@ Command add_voxelize(CLI::App& app) {
   auto args = std::make_shared<VoxelizeArgs>();
   CLI::App* sub = app.add_subcommand("voxelize", "Voxelize a mesh (OBJ/OFF/PLY/STL) or a scene (.json)");
   sub->add_option("input", args->input, "mesh or scene file; omitted: the built-in default scene");
-  sub->add_option("-o,--output", args->output, "output volume: .nrrd, .vti, .binvox (cubic), .vox (<=256)");
+  sub->add_option("-o,--output", args->output,
+                  "output volume: .nrrd, .vti, .binvox (cubic: --res N gives N^3), .vox (<=256)");
   sub->add_option("--res", args->res, "voxels along the longest axis of the scene bounds (default 256)")
       ->check(CLI::Range(1u, kMaxGridDim));
   sub->add_option("--dims", args->dims, "exact grid dimensions X,Y,Z");
   sub->add_option("--bounds", args->bounds, "world box x0,y0,z0,x1,y1,z1 (default: scene bounds + margin)");
-  sub->add_option(
-         "--method", args->method,
-         "slice (the papers' one-pass duplication), grid (Llamas: one pass per slab), slicemap (Eisemann & "
-         "Decoret bit columns)")
-      ->capture_default_str();
+  std::string methods;
+  for (const MethodInfo& info : kMethods)
+    methods += fmt::format("{}{} ({})", methods.empty() ? "" : "; ", info.name, info.summary);
+  sub->add_option("--method", args->method, methods)->capture_default_str();
   sub->add_option("--solid", args->solid,
                   "also fill the interior (inside channel: voxels whose centre is inside): xor, late, parity "
                   "(exact on closed meshes) or flood (robust to holes)");
   sub->add_option("--slicing", args->slicing,
                   "slicemap slicing: uniform (default) or local (scene-fitted per column)");
-  sub->add_option("--mode", args->mode,
-                  "conservative (default: every touched voxel) or center (the papers' pixel-centre rule)");
-  sub->add_option("--channels", args->channels, "comma list of occ,count,normal,material")
+  sub->add_option(
+      "--mode", args->mode,
+      "conservative (default: every voxel the triangle touches, a guaranteed superset) or center (the "
+      "papers' pixel-centre rule)");
+  sub->add_option("--channels", args->channels,
+                  "comma list of occ,count,normal,material (inside comes with --solid)")
       ->capture_default_str();
   sub->add_option("--device", args->device, "OpenCL device P:D or name substring (also $VOXR_DEVICE)");
   sub->add_option("--report", args->report, "write a JSON report of counts and times");

@@ -1,5 +1,7 @@
 #include "io/binvox_writer.h"
 
+#include <algorithm>
+#include <bit>
 #include <string>
 #include <vector>
 
@@ -30,15 +32,33 @@ uint64_t occupancy_bits(const VoxelGrid& grid, uint64_t pos, uint32_t count) {
   return v;
 }
 
-// Run-length encoder for binvox's (value, count) byte pairs, buffered.
+// Transposes a 64 x 64 bit matrix in place: bit c of a[r] <-> bit r of a[c] (Hacker's Delight 7-3).
+void transpose64(uint64_t (&a)[64]) {
+  uint64_t m = 0x00000000ffffffffull;
+  for (int j = 32; j != 0; j >>= 1, m ^= m << j)
+    for (int k = 0; k < 64; k = (k + j + 1) & ~j) {
+      const uint64_t t = ((a[k] >> j) ^ a[k + j]) & m;
+      a[k] ^= t << j;
+      a[k + j] ^= t;
+    }
+}
+
+// Run-length encoder for binvox's (value, count) byte pairs, fed whole 64-bit words of the voxel stream.
 class RunWriter {
  public:
-  explicit RunWriter(OutputFile& file) : file_(file) { buffer_.reserve(kBuffer); }
-  void push(uint8_t value, uint64_t count) {
-    if (count == 0) return;
-    if (run_ != 0 && value != value_) flush_run();
-    value_ = value;
-    run_ += count;
+  explicit RunWriter(OutputFile& file) : file_(file) { buffer_.reserve(kBuffer + 512); }
+  // The next `n` (1..64) voxels of the stream: bit t of `bits` is voxel t (bits above n are ignored).
+  void push_word(uint64_t bits, uint32_t n) {
+    while (n > 0) {
+      const uint8_t bit = uint8_t(bits & 1u);
+      const uint32_t len =
+          std::min<uint32_t>(n, uint32_t(bit ? std::countr_one(bits) : std::countr_zero(bits)));
+      if (run_ != 0 && bit != value_) flush_run();
+      value_ = bit;
+      run_ += len;
+      n -= len;
+      bits = len >= 64 ? 0 : bits >> len;
+    }
   }
   void finish() {
     flush_run();
@@ -54,10 +74,10 @@ class RunWriter {
       buffer_.push_back(value_);
       buffer_.push_back(c);
       run_ -= c;
-      if (buffer_.size() >= kBuffer) {
-        file_.write(buffer_.data(), buffer_.size());
-        buffer_.clear();
-      }
+    }
+    if (buffer_.size() >= kBuffer) {
+      file_.write(buffer_.data(), buffer_.size());
+      buffer_.clear();
     }
   }
   OutputFile& file_;
@@ -85,17 +105,26 @@ fs::path write_binvox(const VoxelGrid& grid, const fs::path& out) {
   file.write(fmt::format("#binvox 1\ndim {} {} {}\ntranslate {} {} {}\nscale {}\ndata\n", d, d, d,
                          spec.origin.x, spec.origin.y, spec.origin.z, float(d) * spec.voxel_size));
 
-  // binvox walks x slowest and y fastest, across voxr's x-fastest layout. Transpose a block of 64 x-values
-  // at a time: masks[z*D + y] holds the occupancy of x0..x0+63 along row (y, z), so occupancy is read once
-  // and in order, and the masks (8*D^2 bytes) are then walked per x.
-  std::vector<uint64_t> masks(d * d);
+  // binvox walks x slowest and y fastest, across voxr's x-fastest layout. For each block of 64 x-values
+  // and each z, 64 x 64 tiles (64 y-rows of 64 x-bits) are transposed into 64 words along y, one per x,
+  // stored x-major; the stream is then run-length encoded a word at a time.
+  const uint64_t words_y = (d + 63) / 64;
+  std::vector<uint64_t> stream(64 * d * words_y);  // [dx][z][y word] for the current x block
   RunWriter runs(file);
   for (uint64_t x0 = 0; x0 < d; x0 += 64) {
     const uint32_t width = uint32_t(std::min<uint64_t>(64, d - x0));
     for (uint64_t z = 0; z < d; ++z)
-      for (uint64_t y = 0; y < d; ++y) masks[z * d + y] = occupancy_bits(grid, (z * d + y) * d + x0, width);
+      for (uint64_t wy = 0; wy < words_y; ++wy) {
+        uint64_t tile[64] = {};
+        const uint64_t y0 = wy * 64, rows = std::min<uint64_t>(64, d - y0);
+        for (uint64_t r = 0; r < rows; ++r) tile[r] = occupancy_bits(grid, (z * d + y0 + r) * d + x0, width);
+        transpose64(tile);
+        for (uint32_t dx = 0; dx < width; ++dx) stream[(dx * d + z) * words_y + wy] = tile[dx];
+      }
     for (uint32_t dx = 0; dx < width; ++dx)
-      for (uint64_t zy = 0; zy < d * d; ++zy) runs.push(uint8_t((masks[zy] >> dx) & 1u), 1);
+      for (uint64_t z = 0; z < d; ++z)
+        for (uint64_t wy = 0; wy < words_y; ++wy)
+          runs.push_word(stream[(dx * d + z) * words_y + wy], uint32_t(std::min<uint64_t>(64, d - wy * 64)));
   }
   runs.finish();
   file.commit();

@@ -8,7 +8,7 @@
 
 #include <filesystem>
 
-#include "voxelize/voxel_grid.h"
+#include "grid/voxel_grid.h"
 
 namespace voxr {
 

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "voxelize/voxel_grid.h"
+#include "grid/voxel_grid.h"
 
 namespace voxr {
 

@@ -53,6 +53,11 @@ std::vector<fs::path> write_volume(const VoxelGrid& grid, const fs::path& out) {
   throw InternalError("unhandled volume format");
 }
 
+void fit_request_to_format(GridRequest& request, const fs::path& out) {
+  if (out.empty()) return;
+  if (volume_format(out) == Format::kBinvox && !request.dims) request.dims = glm::uvec3(request.resolution);
+}
+
 void check_volume_output(const fs::path& out, const glm::uvec3& dims) {
   check_output_path(out);
   const Format format = volume_format(out);

@@ -13,7 +13,8 @@
 
 #include <glm/glm.hpp>
 
-#include "voxelize/voxel_grid.h"
+#include "core/grid_spec.h"
+#include "grid/voxel_grid.h"
 
 namespace voxr {
 
@@ -24,6 +25,10 @@ namespace voxr {
 std::vector<std::filesystem::path> write_volume(const VoxelGrid& grid, const std::filesystem::path& out);
 
 // ---- Shared by the format writers ----------------------------------------------------------------------
+
+// Adapts a grid request to what the format of `out` holds: .binvox stores cubic grids only, so a request by
+// resolution (no explicit dims) becomes resolution^3 around the scene. Other formats: unchanged.
+void fit_request_to_format(GridRequest& request, const std::filesystem::path& out);
 
 // Everything write_volume would refuse before any work is done: folder, extension, grid size the format can
 // hold. Throws voxr::Error naming `out`.

@@ -12,7 +12,7 @@
 
 #include <glm/glm.hpp>
 
-#include "voxelize/voxel_grid.h"
+#include "grid/voxel_grid.h"
 
 namespace voxr {
 

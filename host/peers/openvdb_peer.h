@@ -6,8 +6,8 @@
 
 #include "core/grid_spec.h"
 #include "core/triangle_soup.h"
-#include "voxelize/slice_voxelizer.h"
-#include "voxelize/voxel_grid.h"
+#include "grid/voxel_grid.h"
+#include "voxelize/voxelizer.h"
 
 namespace voxr {
 

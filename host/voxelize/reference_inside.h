@@ -4,7 +4,7 @@
 //                             from the centre along +z, in 128-bit integers, one column at a time over the
 //                             triangles whose projection may hold it. Independent of the kernels (which
 //                             scatter per triangle and count crossings below the centre); on a closed mesh
-//                             the two parities agree (see solid_voxelizer.h).
+//                             the two parities agree (see solid_fill.h).
 //   reference_inside_winding  generalized winding number (Jacobson et al. 2013: sum of the triangles' solid
 //                             angles / 4 pi, double precision), inside where |w| > 0.5: the reference for
 //                             open meshes and meshes with holes.
@@ -17,8 +17,8 @@
 
 #include "core/grid_spec.h"
 #include "core/triangle_soup.h"
+#include "grid/voxel_grid.h"
 #include "voxelize/solid_mode.h"
-#include "voxelize/voxel_grid.h"
 
 namespace voxr {
 

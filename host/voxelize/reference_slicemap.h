@@ -11,9 +11,9 @@
 
 #include "core/grid_spec.h"
 #include "core/triangle_soup.h"
+#include "grid/voxel_grid.h"
 #include "voxelize/slicemap_voxelizer.h"
 #include "voxelize/snapped_triangle.h"
-#include "voxelize/voxel_grid.h"
 
 namespace voxr {
 

@@ -16,9 +16,10 @@ int64_t floor_div(int64_t a, int64_t b) {
 
 }  // namespace
 
-bool reference_conservative_overlap(const SnappedTriangle& t, int64_t i, int64_t j, int64_t k) {
+bool reference_conservative_overlap(const SnappedTriangle& t, int64_t i, int64_t j, int64_t k,
+                                    int64_t margin) {
   // Akenine-Moller's formulation around the box centre, in doubled coordinates so the centre is integral:
-  // centre c = 2*corner + S, half-size h = S, vertices 2v.
+  // centre c = 2*corner + S, half-size h = S + 2 margin, vertices 2v.
   const int64_t corner[3] = {i * S, j * S, k * S};
   i128 p[3][3];
   for (int c = 0; c < 3; ++c)
@@ -29,7 +30,7 @@ bool reference_conservative_overlap(const SnappedTriangle& t, int64_t i, int64_t
     const i128 lo = std::min({proj[0], proj[1], proj[2]});
     const i128 hi = std::max({proj[0], proj[1], proj[2]});
     i128 r = 0;
-    for (int a = 0; a < 3; ++a) r += (axis[a] < 0 ? -axis[a] : axis[a]) * S;
+    for (int a = 0; a < 3; ++a) r += (axis[a] < 0 ? -axis[a] : axis[a]) * (S + 2 * margin);
     return lo > r || hi < -r;
   };
   // Box face normals.
@@ -95,6 +96,7 @@ bool reference_center_hit(const SnappedTriangle& t, int64_t i, int64_t j, int64_
 VoxelGrid reference_voxelize(const TriangleSoup& soup, const GridSpec& grid, RasterMode mode,
                              ChannelSet channels) {
   const std::array<float, 12> m = grid.world_to_grid();
+  const int64_t margin = mode == RasterMode::kConservative ? snap_margin(grid, soup.bounds()) : 0;
   struct Attr {
     uint32_t count = 0;
     glm::ivec3 nsum{0};
@@ -108,14 +110,15 @@ VoxelGrid reference_voxelize(const TriangleSoup& soup, const GridSpec& grid, Ras
     for (int a = 0; a < 3; ++a) {
       const int64_t lo = std::min({t.v[0][a], t.v[1][a], t.v[2][a]});
       const int64_t hi = std::max({t.v[0][a], t.v[1][a], t.v[2][a]});
-      first[a] = std::max<int64_t>(0, floor_div(lo, S) - 1);
-      last[a] = std::min<int64_t>(int64_t(grid.dims[a]) - 1, floor_div(hi, S));
+      first[a] = std::max<int64_t>(0, floor_div(lo - margin, S) - 1);
+      last[a] = std::min<int64_t>(int64_t(grid.dims[a]) - 1, floor_div(hi + margin, S));
     }
     for (int64_t k = first[2]; k <= last[2]; ++k)
       for (int64_t j = first[1]; j <= last[1]; ++j)
         for (int64_t i = first[0]; i <= last[0]; ++i) {
-          const bool hit = mode == RasterMode::kConservative ? reference_conservative_overlap(t, i, j, k)
-                                                             : reference_center_hit(t, i, j, k);
+          const bool hit = mode == RasterMode::kConservative
+                               ? reference_conservative_overlap(t, i, j, k, margin)
+                               : reference_center_hit(t, i, j, k);
           if (!hit) continue;
           Attr& v = voxels[grid.linear_index(uint32_t(i), uint32_t(j), uint32_t(k))];
           v.count += 1;

@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <bit>
-#include <chrono>
 
 #include "cl/scan.h"
-#include "voxelize/triangle_splitter.h"
+#include "voxelize/grid_params.h"
 #include "voxr_layout.h"
 
 namespace voxr {
@@ -17,6 +16,18 @@ constexpr size_t kGroup = 256;
 // agree, so the host passes both.
 constexpr uint32_t kTileRows = 8;
 constexpr uint32_t kTileCols = 8;
+
+Defines slicemap_defines(bool local) {
+  return {{"WG_SIZE", std::to_string(kGroup)},
+          {"SLICEMAP_TILE_ROWS", std::to_string(kTileRows)},
+          {"SLICEMAP_TILE_COLS", std::to_string(kTileCols)},
+          {"SLICEMAP_LOCAL", local ? "1" : "0"}};
+}
+
+Defines with(Defines d, const char* key, const char* value) {
+  d.push_back({key, value});
+  return d;
+}
 
 }  // namespace
 
@@ -43,42 +54,33 @@ uint64_t Slicemap::bits_set() const {
   return n;
 }
 
-VoxelGrid SlicemapVoxelizer::run(const TriangleSoup& soup, const GridSpec& grid, SlicemapSlicing slicing,
-                                 VoxelizeStats* stats, Slicemap* slicemap, const SlicemapOptions& options) {
-  return upload_and_voxelize(cl_, soup, grid, stats, [&](const DeviceMesh& mesh) {
-    return run(mesh, grid, slicing, stats, slicemap, options);
-  });
+std::vector<ProgramSpec> SlicemapVoxelizer::programs(const VoxelizeOptions& options) const {
+  const bool local = options.slicing == SlicemapSlicing::kLocal;
+  const Defines common = slicemap_defines(local);
+  std::vector<ProgramSpec> specs = scan_programs();
+  specs.push_back({"slicemap_setup.cl", common});
+  specs.push_back({"slicemap_expand.cl", common});
+  if (local) specs.push_back({"slicemap_raster.cl", with(common, "SLICEMAP_PASS", "0")});
+  specs.push_back({"slicemap_raster.cl", with(common, "SLICEMAP_PASS", "1")});
+  specs.push_back({"slicemap_voxels.cl", common});
+  return specs;
 }
 
-VoxelGrid SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, SlicemapSlicing slicing,
-                                 VoxelizeStats* stats, Slicemap* slicemap, const SlicemapOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  cl_.finish();
-  const auto before = cl_.profiler().stats();
-  const bool local = slicing == SlicemapSlicing::kLocal;
+void SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                            DeviceVoxelGrid& out, VoxelizeStats& stats) {
+  const bool local = options.slicing == SlicemapSlicing::kLocal;
+  last_grid_ = grid;
+  last_slicing_ = options.slicing;
   // zf < dims.z * S must fit the depth codes (uint) of the depth pass.
   VOXR_CHECK_LT(uint64_t(grid.dims.z) * VOXR_SUBVOXEL, uint64_t(0xffffffffu));
-
-  VoxGridParams params{};
-  const std::array<float, 12> m = grid.world_to_grid();
-  std::copy(m.begin(), m.end(), params.world_to_grid);
-  for (int a = 0; a < 3; ++a) params.dims[a] = grid.dims[a];
-  params.triangle_count = mesh.triangle_count();
-
   const uint64_t tris = mesh.triangle_count();
+  const VoxGridParams params = make_grid_params(grid, uint32_t(tris), 0);
+
   const uint64_t columns = uint64_t(grid.dims.x) * grid.dims.y;
   const uint32_t words_per_column = (grid.dims.z + 31) / 32;
   const uint64_t slicemap_words = columns * words_per_column;
-  const uint64_t occ_words = (grid.voxel_count() + 31) / 32;
-  const Defines common = {{"WG_SIZE", std::to_string(kGroup)},
-                          {"SLICEMAP_TILE_ROWS", std::to_string(kTileRows)},
-                          {"SLICEMAP_TILE_COLS", std::to_string(kTileCols)},
-                          {"SLICEMAP_LOCAL", local ? "1" : "0"}};
-  auto with = [&](const char* key, const char* value) {
-    Defines d = common;
-    d.push_back({key, value});
-    return d;
-  };
+  const uint64_t occ_words = out.words();
+  const Defines common = slicemap_defines(local);
   uint64_t device_bytes = 0;
   auto alloc = [&](uint64_t bytes, const std::string& what) {
     device_bytes += bytes;
@@ -90,9 +92,9 @@ VoxelGrid SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, S
   cl::Buffer depth_range =
       local ? alloc(columns * 8, "the column depth ranges") : alloc(4, "unused depth ranges");
   if (local) cl_.fill_zero(depth_range, columns * 8, "clear");
-  cl::Buffer snapped = alloc(tris * 48, "snapped triangles");
+  cl::Buffer snapped = alloc(tris * sizeof(VoxSnappedTriangle), "snapped triangles");
   cl::Buffer counts = alloc(tris * 4, "tile counts");
-  cl::Buffer info = alloc(tris * 8, "tile info");
+  cl::Buffer info = alloc(tris * sizeof(SlicemapTiles), "tile info");
   cl::Buffer offsets = alloc(tris * 8, "tile offsets");
   cl::Buffer too_large = alloc(4, "split check");
   cl_.fill_zero(too_large, 4, "clear");
@@ -107,10 +109,10 @@ VoxelGrid SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, S
                                     oversized, VOXR_MAX_TRIANGLE_EXTENT));
 
   // Records per batch: within the budget and within the raster kernel's 32-bit record count.
-  const uint64_t batch =
-      std::max<uint64_t>(1, std::min({records, options.record_budget_bytes / 8, uint64_t(1) << 30}));
+  const uint64_t batch = std::max<uint64_t>(
+      1, std::min({records, options.record_budget_bytes / sizeof(SlicemapRecord), uint64_t(1) << 30}));
   const uint64_t batches = records == 0 ? 0 : (records + batch - 1) / batch;
-  cl::Buffer record_buffer = alloc(batch * 8, "raster records");
+  cl::Buffer record_buffer = alloc(batch * sizeof(SlicemapRecord), "raster records");
   cl::Kernel expand = cl_.kernel("slicemap_expand.cl", "slicemap_expand", common);
   bool expanded = false;
   auto raster_all = [&](const char* name, cl::Kernel& raster) {
@@ -125,55 +127,50 @@ VoxelGrid SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, S
     }
   };
   if (local) {
-    cl::Kernel depth = cl_.kernel("slicemap_raster.cl", "slicemap_raster", with("SLICEMAP_PASS", "0"));
+    cl::Kernel depth =
+        cl_.kernel("slicemap_raster.cl", "slicemap_raster", with(common, "SLICEMAP_PASS", "0"));
     raster_all("depth", depth);
   }
-  cl::Kernel raster = cl_.kernel("slicemap_raster.cl", "slicemap_raster", with("SLICEMAP_PASS", "1"));
+  cl::Kernel raster = cl_.kernel("slicemap_raster.cl", "slicemap_raster", with(common, "SLICEMAP_PASS", "1"));
   raster_all("raster", raster);
 
-  cl::Buffer occ = alloc(occ_words * 4, "the occupancy bits");
+  cl::Buffer& occ = out.occ.ensure(cl_, occ_words * 4, "the occupancy bits");
   cl_.fill_zero(occ, occ_words * 4, "clear");
   cl::Kernel voxels = cl_.kernel("slicemap_voxels.cl", "slicemap_voxels", common);
   cl_.launch("voxels", voxels, slicemap_words, kGroup, params, bits, depth_range, occ);
 
-  VoxelGrid out;
-  out.spec = grid;
-  out.occ.resize(occ_words);
-  cl_.download(occ, out.occ.data(), occ_words * 4, "readback occupancy");
-  if (slicemap) {
-    *slicemap = Slicemap{};
-    slicemap->spec = grid;
-    slicemap->slicing = slicing;
-    slicemap->words_per_column = words_per_column;
-    slicemap->bits.resize(slicemap_words);
-    cl_.download(bits, slicemap->bits.data(), slicemap_words * 4, "readback slicemap");
-    if (local) {
-      std::vector<uint32_t> codes(columns * 2);
-      cl_.download(depth_range, codes.data(), columns * 8, "readback depth ranges");
-      const uint32_t z_end = grid.dims.z * uint32_t(VOXR_SUBVOXEL);
-      slicemap->near.assign(columns, Slicemap::kEmptyNear);
-      slicemap->far.assign(columns, 0);
-      for (uint64_t c = 0; c < columns; ++c) {
-        if (codes[2 * c + 1] == 0) continue;
-        slicemap->near[c] = z_end - codes[2 * c];
-        slicemap->far[c] = codes[2 * c + 1] - 1;
-      }
+  stats.triangles = tris;
+  stats.copies = records;
+  stats.work_items = records;
+  stats.batches = batches;
+  stats.device_bytes += device_bytes;
+}
+
+Slicemap SlicemapVoxelizer::read_slicemap() {
+  const GridSpec& grid = last_grid_;
+  const bool local = last_slicing_ == SlicemapSlicing::kLocal;
+  const uint64_t columns = uint64_t(grid.dims.x) * grid.dims.y;
+  Slicemap slicemap;
+  slicemap.spec = grid;
+  slicemap.slicing = last_slicing_;
+  slicemap.words_per_column = (grid.dims.z + 31) / 32;
+  const uint64_t words = columns * slicemap.words_per_column;
+  slicemap.bits.resize(words);
+  cl_.download(scratch_.get("the slicemap", words * 4), slicemap.bits.data(), words * 4, "readback slicemap");
+  if (local) {
+    std::vector<uint32_t> codes(columns * 2);
+    cl_.download(scratch_.get("the column depth ranges", columns * 8), codes.data(), columns * 8,
+                 "readback depth ranges");
+    const uint32_t z_end = grid.dims.z * uint32_t(VOXR_SUBVOXEL);
+    slicemap.near.assign(columns, Slicemap::kEmptyNear);
+    slicemap.far.assign(columns, 0);
+    for (uint64_t c = 0; c < columns; ++c) {
+      if (codes[2 * c + 1] == 0) continue;
+      slicemap.near[c] = z_end - codes[2 * c];
+      slicemap.far[c] = codes[2 * c + 1] - 1;
     }
   }
-  cl_.finish("voxelizing with the slicemap");
-  for (uint32_t w : out.occ) out.voxels_set += std::popcount(w);
-
-  if (stats) {
-    *stats = VoxelizeStats{};
-    stats->triangles = tris;
-    stats->copies = records;
-    stats->work_items = records;
-    stats->batches = batches;
-    stats->voxels_set = out.voxels_set;
-    stats->device_bytes = device_bytes;
-    stats->record_times(cl_.profiler().since(before), start);
-  }
-  return out;
+  return slicemap;
 }
 
 }  // namespace voxr

@@ -28,26 +28,15 @@
 #pragma once
 
 #include <cstdint>
-#include <map>
-#include <string>
-#include <string_view>
 #include <vector>
 
-#include "cl/cl_runtime.h"
 #include "cl/scratch_buffers.h"
-#include "core/grid_spec.h"
-#include "core/triangle_soup.h"
-#include "voxelize/slice_voxelizer.h"
-#include "voxelize/voxel_grid.h"
+#include "voxelize/slicemap_slicing.h"
+#include "voxelize/voxelizer.h"
 
 namespace voxr {
 
-enum class SlicemapSlicing { kUniform, kLocal };
-
-const char* slicemap_slicing_name(SlicemapSlicing slicing);     // "uniform" | "local"
-SlicemapSlicing parse_slicemap_slicing(std::string_view name);  // throws voxr::Error naming a bad value
-
-// The raw slicemap as the kernels leave it (for tests and analysis; run() converts it to voxels).
+// The raw slicemap as the kernels leave it (for tests and analysis; the voxelizer converts it to voxels).
 struct Slicemap {
   GridSpec spec;
   SlicemapSlicing slicing = SlicemapSlicing::kUniform;
@@ -68,29 +57,23 @@ struct Slicemap {
   uint64_t bits_set() const;                        // all columns
 };
 
-struct SlicemapOptions {
-  uint64_t record_budget_bytes = 256ull << 20;  // device memory for (triangle, tile) records per batch
-};
-
-class SlicemapVoxelizer {
+class SlicemapVoxelizer final : public SurfaceVoxelizer {
  public:
   explicit SlicemapVoxelizer(ClRuntime& cl) : cl_(cl), scratch_(cl) {}
 
-  // Splits oversized triangles, uploads, voxelizes and reads back the occupancy grid (channels: occ).
-  // stats: triangles, copies = (triangle, tile) raster records, batches, voxels_set, device_bytes,
-  // upload/kernels/readback ms and stage_ms per stage. `slicemap`, when given, also receives the raw bits
-  // (and local depth ranges).
-  VoxelGrid run(const TriangleSoup& soup, const GridSpec& grid, SlicemapSlicing slicing,
-                VoxelizeStats* stats = nullptr, Slicemap* slicemap = nullptr,
-                const SlicemapOptions& options = {});
-  // Voxelizes an uploaded mesh (which must not need splitting: see split_oversized_triangles).
-  VoxelGrid run(const DeviceMesh& mesh, const GridSpec& grid, SlicemapSlicing slicing,
-                VoxelizeStats* stats = nullptr, Slicemap* slicemap = nullptr,
-                const SlicemapOptions& options = {});
+  std::vector<ProgramSpec> programs(const VoxelizeOptions& options) const override;
+  // occ only. stats: copies = (triangle, tile) raster records, batches, work items.
+  void run(const DeviceMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options, DeviceVoxelGrid& out,
+           VoxelizeStats& stats) override;
+
+  // The raw bits (and local depth ranges) of the last run.
+  Slicemap read_slicemap();
 
  private:
   ClRuntime& cl_;
   ScratchBuffers scratch_;  // device buffers kept between runs
+  GridSpec last_grid_;
+  SlicemapSlicing last_slicing_ = SlicemapSlicing::kUniform;
 };
 
 }  // namespace voxr

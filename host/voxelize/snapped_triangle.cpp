@@ -5,6 +5,23 @@
 
 namespace voxr {
 
+uint32_t snap_margin(const GridSpec& grid, const Bounds& bounds) {
+  const std::array<float, 12> m = grid.world_to_grid();
+  double worst = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const float* r = m.data() + 4 * a;
+    // The largest |m_c p_c| summed over the box's corners, and the translation's own size.
+    double terms = 0.0;
+    for (int c = 0; c < 3; ++c)
+      terms += std::max(std::abs(double(r[c]) * bounds.lo[c]), std::abs(double(r[c]) * bounds.hi[c])) +
+               std::abs(double(r[c]) * grid.origin[c]);
+    worst = std::max(worst, terms + std::abs(double(r[3])));
+  }
+  const double units = 0.5 + worst * std::ldexp(1.0, -20) * VOXR_SUBVOXEL;
+  if (!(units < double(1u << 30))) return 1u << 30;
+  return std::max<uint32_t>(1, uint32_t(std::ceil(units)));
+}
+
 glm::vec3 grid_coords(const std::array<float, 12>& m, const glm::vec4& p) {
   glm::vec3 g;
   for (int a = 0; a < 3; ++a) {

@@ -1,4 +1,4 @@
-// The four solid (interior) voxelization modes; see host/voxelize/solid_voxelizer.h for their exact rules.
+// The four solid (interior) voxelization modes; see host/voxelize/solid_fill.h for their exact rules.
 #pragma once
 
 #include <string_view>

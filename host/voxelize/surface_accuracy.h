@@ -1,6 +1,6 @@
 // Accuracy of a surface voxelization, one definition for every method (DESIGN.md, Metrics):
-//  - true/false positives and negatives against the exact triangle/box overlap set (the conservative
-//    voxelization, which the tests prove equal to the 128-bit SAT reference);
+//  - true/false positives and negatives against the exact triangle/box overlap set of the input triangles
+//    (reference_overlap.h);
 //  - tunnels: axis-aligned rays through voxel-centre lines (along x, y and z) that cross the surface where
 //    the voxel holding the crossing is not set — the ray slips through the voxelized surface there.
 #pragma once
@@ -9,7 +9,7 @@
 
 #include "core/grid_spec.h"
 #include "core/triangle_soup.h"
-#include "voxelize/voxel_grid.h"
+#include "grid/voxel_grid.h"
 
 namespace voxr {
 
@@ -26,7 +26,7 @@ struct SurfaceAccuracy {
   double tunnel_rate() const { return crossings ? double(tunnels) / double(crossings) : 0.0; }
 };
 
-// `exact` must be the conservative voxelization of `soup` on the same grid as `result`.
+// `exact` must be reference_overlap(soup, grid) on the same grid as `result`.
 SurfaceAccuracy measure_surface_accuracy(const VoxelGrid& result, const VoxelGrid& exact,
                                          const TriangleSoup& soup);
 

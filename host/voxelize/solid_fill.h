@@ -1,5 +1,6 @@
-// Solid voxelization: which voxel centres lie inside the mesh. The slicing axis is the grid's z; a column is
-// the line of voxels (i, j, 0..nz-1), its centre line (i + 1/2, j + 1/2, z).
+// Solid fill: which voxel centres lie inside the mesh (the inside channel of a DeviceVoxelGrid). The slicing
+// axis is the grid's z; a column is the line of voxels (i, j, 0..nz-1), its centre line (i + 1/2, j + 1/2,
+// z).
 //
 // Modes (kernels/vox_solid_*.cl, CPU references in reference_inside.h):
 //   parity  Exact centre-crossing parity. A triangle crosses column (i, j) when the column centre lies in
@@ -22,7 +23,8 @@
 //           "questionable": counted, cleared and repaired from its 4 neighbour columns, voxel by voxel, by
 //           the majority of the neighbours already resolved (ties count as inside), in Jacobi rounds until no
 //           column changes. Equal to parity on closed meshes (no column is odd).
-//   flood   Flood fill of the outside over the conservative surface (SliceVoxelizer, kConservative):
+//   flood   Flood fill of the outside over the conservative surface (the run's own surface when it is
+//           conservative and of the slice family, else a hybrid conservative surface of its own):
 //           outside = the non-surface voxels 6-connected to a non-surface voxel on the grid border, by x, y
 //           and z line sweeps repeated until a round changes nothing; inside = the rest (surface voxels
 //           included). Closes holes smaller than a voxel and needs no watertight mesh; the interior is up to
@@ -32,47 +34,39 @@
 #pragma once
 
 #include <cstdint>
-#include <map>
-#include <string>
+#include <memory>
+#include <vector>
 
-#include "cl/cl_runtime.h"
 #include "cl/scratch_buffers.h"
-#include "core/grid_spec.h"
-#include "core/triangle_soup.h"
-#include "voxelize/slice_voxelizer.h"
-#include "voxelize/solid_mode.h"
-#include "voxelize/voxel_grid.h"
+#include "voxelize/voxelizer.h"
 
 namespace voxr {
 
-struct SolidStats {
-  uint64_t inside_voxels = 0;
-  uint64_t questionable_columns = 0;  // late: columns with an odd crossing count
-  uint64_t repair_iterations = 0;     // late: repair rounds that resolved at least one column
-  uint64_t flood_iterations = 0;      // flood: x/y/z sweep rounds, the last one changing nothing
-  uint64_t crossing_items = 0;        // work items of vox_solid_cross (triangle, row block)
-  double kernels_ms = 0.0;            // profiled kernel time (flood: surface voxelization included)
-  std::map<std::string, double> stage_ms;
-};
+class SliceVoxelizer;
 
-class SolidVoxelizer {
+class SolidFill {
  public:
-  explicit SolidVoxelizer(ClRuntime& cl) : cl_(cl), surface_(cl), scratch_(cl) {}
+  explicit SolidFill(ClRuntime& cl);
+  ~SolidFill();
 
-  // Fills grid.inside (and grid.inside_voxels) with the voxels whose CENTRE the mode judges inside;
-  // channels = occ + inside. grid.occ holds the conservative surface for kFlood and no voxel for the others
-  // (merge with a surface run by taking inside and inside_voxels). Triangles longer than
-  // kSplitExtentVoxels are split first (triangle_splitter.h), which can open the mesh where they were.
-  VoxelGrid run(const TriangleSoup& soup, const GridSpec& grid, SolidMode mode, SolidStats* stats = nullptr);
+  std::vector<ProgramSpec> programs(SolidMode mode) const;
+
+  // Fills out.inside (dense bits) and out.inside_voxels with the voxels whose CENTRE `mode` judges inside.
+  // `surface_is_conservative`: out.occ already holds the conservative surface (flood uses it). The mesh
+  // should be uploaded with SplitCull::kColumns (crossings below and above the grid count). stats receive
+  // the solid counters.
+  void run(const DeviceMesh& mesh, const GridSpec& grid, SolidMode mode, bool surface_is_conservative,
+           DeviceVoxelGrid& out, VoxelizeStats& stats);
 
  private:
-  void run_crossings(const TriangleSoup& soup, const GridSpec& grid, SolidMode mode, cl::Buffer& padded,
-                     SolidStats& stats);
-  void run_flood(const TriangleSoup& soup, const GridSpec& grid, VoxelGrid& out, cl::Buffer& padded,
-                 SolidStats& stats);
+  void run_crossings(const DeviceMesh& mesh, const GridSpec& grid, SolidMode mode, cl::Buffer& padded,
+                     VoxelizeStats& stats);
+  void run_flood(const DeviceMesh& mesh, const GridSpec& grid, const cl::Buffer& surface, cl::Buffer& padded,
+                 VoxelizeStats& stats);
 
   ClRuntime& cl_;
-  SliceVoxelizer surface_;  // flood's conservative surface
+  std::unique_ptr<SliceVoxelizer> surface_;  // flood's own conservative surface, when the run has none
+  DeviceVoxelGrid surface_grid_;
   ScratchBuffers scratch_;  // device buffers kept between runs
 };
 

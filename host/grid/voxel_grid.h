@@ -4,37 +4,14 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
-#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "core/grid_spec.h"
+#include "grid/channel_table.h"
 
 namespace voxr {
-
-enum class Channel : uint32_t {
-  kOcc = 1u << 0,
-  kCount = 1u << 1,
-  kNormal = 1u << 2,
-  kMaterial = 1u << 3,
-  kInside = 1u << 4,  // dense interior bits (VoxelGrid::inside), filled by SolidVoxelizer
-};
-
-struct ChannelSet {
-  uint32_t bits = uint32_t(Channel::kOcc);
-  bool has(Channel c) const { return (bits & uint32_t(c)) != 0; }
-  void add(Channel c) { bits |= uint32_t(c); }
-  // Whether a sparse per-set-voxel channel (count, normal, material) is requested; inside is dense.
-  bool attributes() const { return (bits & ~uint32_t(Channel::kOcc) & ~uint32_t(Channel::kInside)) != 0; }
-  // "occ,count,normal,material,inside" (any subset; occ is always present). Throws voxr::Error naming the
-  // unknown channel.
-  static ChannelSet parse(std::string_view list);
-  std::string to_string() const;
-};
-
-const char* channel_name(Channel c);
 
 struct VoxelGrid;
 // The solid as one occupancy set (surface bits or interior bits), for the formats that hold a single set
@@ -54,7 +31,7 @@ struct VoxelGrid {
   std::vector<uint32_t> material;      // largest material id among the triangles that wrote the voxel
 
   // Dense interior bits, laid out like occ, when channels has kInside (else empty): voxels whose centre a
-  // solid mode judges inside (host/voxelize/solid_voxelizer.h).
+  // solid mode judges inside (host/voxelize/solid_fill.h).
   std::vector<uint32_t> inside;
   uint64_t inside_voxels = 0;
 

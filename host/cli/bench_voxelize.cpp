@@ -1,0 +1,224 @@
+#include "cli/bench_voxelize.h"
+
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "bench/bench_meshes.h"
+#include "bench/median.h"
+#include "bench/voxelize_cases.h"
+#include "cl/cl_runtime.h"
+#include "io/volume_writer.h"
+#include "voxelize/voxelizer.h"
+
+namespace voxr::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+double load_average() {
+  std::ifstream in("/proc/loadavg");
+  double one = -1.0;
+  in >> one;
+  return one;
+}
+
+struct Spread {
+  double median = 0.0, min = 0.0, max = 0.0;
+};
+
+Spread spread(const std::vector<double>& v) {
+  if (v.empty()) return {};
+  return {median(v), *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())};
+}
+
+std::string format_spread(const Spread& s) {
+  return fmt::format("{:.1f} [{:.1f}-{:.1f}]", s.median, s.min, s.max);
+}
+
+// The benchmark mesh as an ASCII OFF file for the fresh processes to read; "%.9g" round-trips every float,
+// so the file voxelizes exactly like the mesh in memory.
+void write_off(const TriangleSoup& soup, const fs::path& path) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) fail("{}: cannot write the benchmark mesh", path.string());
+  std::string text = fmt::format("OFF\n{} {} 0\n", soup.positions.size(), soup.triangles.size());
+  for (const glm::vec4& p : soup.positions)
+    fmt::format_to(std::back_inserter(text), "{:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
+  for (const glm::uvec4& t : soup.triangles)
+    fmt::format_to(std::back_inserter(text), "3 {} {} {}\n", t.x, t.y, t.z);
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok) fail("{}: cannot write the benchmark mesh", path.string());
+}
+
+struct FreshRun {
+  double process_ms = 0.0;  // measured from here: spawn to exit
+  double wall_ms = 0.0;     // the report's ms.wall
+  double report_process_ms = 0.0;
+};
+
+// Runs this executable as `voxr voxelize ...` and reads its report.
+FreshRun run_fresh(const std::vector<std::string>& arguments, const fs::path& report) {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) fail("cannot find the voxr executable to start fresh processes");
+  std::vector<std::string> args = {self.string(), "voxelize"};
+  args.insert(args.end(), arguments.begin(), arguments.end());
+  for (const char* extra : {"-q", "--report"}) args.push_back(extra);
+  args.push_back(report.string());
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  const auto start = Clock::now();
+  pid_t pid = 0;
+  if (posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0)
+    fail("cannot start {}", argv[0]);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  FreshRun run;
+  run.process_ms = ms_since(start);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    fail("the fresh process `voxr voxelize` failed (see above)");
+  std::ifstream in(report);
+  const nlohmann::json r = nlohmann::json::parse(in);
+  run.wall_ms = r["ms"]["wall"].get<double>();
+  run.report_process_ms = r["ms"]["process"].get<double>();
+  return run;
+}
+
+}  // namespace
+
+int run_bench_voxelize(const BenchVoxelizeArgs& args) {
+  ClRuntime cl(args.device);
+  Voxelizer voxelizer(cl);
+  std::vector<const VoxelizeCase*> cases;
+  for (const std::string& name : args.cases) {
+    cases.push_back(&find_voxelize_case(name));
+    voxelizer.prepare(cases.back()->options());
+  }
+  if (!args.write.empty()) check_volume_output("out." + args.write, glm::uvec3(1));
+  const fs::path scratch = fs::temp_directory_path() / fmt::format("voxr-bench-{}", getpid());
+  fs::create_directories(scratch);
+  struct Cleanup {
+    fs::path path;
+    ~Cleanup() {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  } cleanup{scratch};
+
+  std::string csv =
+      "device,driver,mesh,triangles,res,dims,case,voxels,direct_triangles,copies,"
+      "frame_kernels_ms,frame_kernels_min_ms,frame_kernels_max_ms,frame_wall_ms,frame_wall_min_ms,"
+      "frame_wall_max_ms,job_wall_ms,job_wall_min_ms,job_wall_max_ms,fresh_wall_ms,fresh_wall_min_ms,"
+      "fresh_wall_max_ms,fresh_process_ms,fresh_process_min_ms,fresh_process_max_ms,triangles_per_s,"
+      "voxels_per_s,repeats,fresh_runs,load_before,load_after,write\n";
+  fmt::print("device: {} ({}, driver {})\n", cl.device().name, cl.device().platform_name,
+             cl.device().driver_version);
+  fmt::print(
+      "times in ms, median [min-max]; frame = mesh on the device, grid stays there; job = upload + voxelize "
+      "+ "
+      "readback in this process; fresh = a new `voxr voxelize` process{}\n",
+      args.write.empty() ? "" : fmt::format(" writing .{}", args.write));
+  fmt::print("{:<10} {:>5} {:<13} {:>9} {:>22} {:>22} {:>22} {:>22} {:>22} {:>9} {:>5}\n", "mesh", "res",
+             "case", "voxels", "frame kernels", "frame wall", "job wall", "fresh ms.wall", "fresh process",
+             "Mtri/s", "load");
+  for (const std::string& name : args.meshes) {
+    const BenchMesh mesh = make_bench_mesh(name);
+    const Bounds bounds = mesh.soup.bounds();
+    const fs::path mesh_file = scratch / (name + ".off");
+    if (args.fresh > 0) write_off(mesh.soup, mesh_file);
+    for (const VoxelizeCase* c : cases) {
+      const VoxelizeOptions options = c->options();
+      for (uint32_t res : args.resolutions) {
+        const double load_before = load_average();
+        GridRequest request;
+        request.resolution = res;
+        const fs::path output = args.write.empty() ? fs::path() : scratch / ("out." + args.write);
+        fit_request_to_format(request, output);
+        const GridSpec grid = fit_grid(bounds, request);
+
+        // Per frame: one upload, the grid stays on the device.
+        const DeviceMesh device_mesh =
+            upload_mesh(cl, mesh.soup, grid, options.solid ? SplitCull::kColumns : SplitCull::kGrid, &bounds);
+        DeviceVoxelGrid frame_grid;
+        std::vector<double> frame_kernels, frame_wall;
+        VoxelizeStats frame;
+        for (int r = 0; r < args.warmup + args.repeat; ++r) {
+          voxelizer.run(device_mesh, grid, options, frame_grid, &frame);
+          if (r < args.warmup) continue;
+          frame_kernels.push_back(frame.kernels_ms);
+          frame_wall.push_back(frame.wall_ms);
+        }
+        build_rank_index(cl, frame_grid);  // voxels_set for occupancy-only cases
+        const uint64_t voxels = frame_grid.voxels_set;
+
+        // The whole job in this process, and in fresh processes, interleaved.
+        std::vector<double> job_wall, fresh_wall, fresh_process;
+        std::vector<std::string> flags = {mesh_file.string(), "--res", std::to_string(res)};
+        const std::vector<std::string> case_flags = c->cli_flags();
+        flags.insert(flags.end(), case_flags.begin(), case_flags.end());
+        if (!output.empty()) {
+          flags.push_back("-o");
+          flags.push_back(output.string());
+        }
+        for (int r = 0; r < std::max(args.warmup + args.repeat, args.fresh); ++r) {
+          if (r < args.warmup + args.repeat) {
+            VoxelizeStats job;
+            voxelizer.run(mesh.soup, grid, options, &job, &bounds);
+            if (r >= args.warmup) job_wall.push_back(job.wall_ms);
+          }
+          if (r < args.fresh) {
+            const FreshRun f = run_fresh(flags, scratch / "report.json");
+            fresh_wall.push_back(f.wall_ms);
+            fresh_process.push_back(f.process_ms);
+          }
+        }
+        const double load_after = load_average();
+        const Spread fk = spread(frame_kernels), fw = spread(frame_wall), jw = spread(job_wall),
+                     nw = spread(fresh_wall), np = spread(fresh_process);
+        const double tri_per_s = fk.median > 0 ? double(frame.triangles) / (fk.median * 1e-3) : 0.0;
+        const double vox_per_s = fk.median > 0 ? double(voxels) / (fk.median * 1e-3) : 0.0;
+        const std::string dims = fmt::format("{}x{}x{}", grid.dims.x, grid.dims.y, grid.dims.z);
+        csv += fmt::format(
+            "\"{}\",\"{}\",{},{},{},{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:"
+            ".3f},"
+            "{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.0f},{:.0f},{},{},{:.2f},{:.2f},{}\n",
+            cl.device().name, cl.device().driver_version, name, frame.triangles, res, dims, c->name, voxels,
+            frame.direct_triangles, frame.copies, fk.median, fk.min, fk.max, fw.median, fw.min, fw.max,
+            jw.median, jw.min, jw.max, nw.median, nw.min, nw.max, np.median, np.min, np.max, tri_per_s,
+            vox_per_s, frame_kernels.size(), fresh_wall.size(), load_before, load_after, args.write);
+        fmt::print("{:<10} {:>5} {:<13} {:>9} {:>22} {:>22} {:>22} {:>22} {:>22} {:>9.1f} {:>5.2f}\n", name,
+                   res, c->name, voxels, format_spread(fk), format_spread(fw), format_spread(jw),
+                   args.fresh ? format_spread(nw) : "-", args.fresh ? format_spread(np) : "-",
+                   tri_per_s * 1e-6, load_after);
+        std::fflush(stdout);
+      }
+    }
+  }
+  if (!args.out.empty()) {
+    std::ofstream out(args.out);
+    out << csv;
+    if (!out) fail("{}: cannot write the CSV", args.out);
+    fmt::print("wrote {}\n", args.out);
+  }
+  return 0;
+}
+
+}  // namespace voxr::cli

@@ -1,0 +1,78 @@
+// A voxel grid that stays on the device: what every voxelizer produces and what the effects read, frame
+// after frame, with no host round trip. Reading it back into a host VoxelGrid (read_back) is a separate,
+// explicit step used by file writers and tests.
+//
+// Layout (the channel table, host/grid/channel_table.h, says which channel is which):
+//   occ, inside   dense bits, one 32-bit word per 32 voxels in linear order (x fastest), words() words.
+//   ranked        the rank index (kernels/voxr_layout.h VOXR_RANKED): per occupancy word the word and the
+//                 number of set voxels before it; words() 64-bit words. Present whenever a sparse channel
+//                 is (build_rank_index otherwise).
+//   count         voxels_set uint32, in rank order;
+//   normal_sum    voxels_set x 3 int32 (fixed point, VOXR_NORMAL_ONE per writer), normal voxels_set x 3
+//                 float (unit, zero where the sum cancels);
+//   material      voxels_set uint32.
+// Why sparse by rank and not dense: a dense normal channel at 1024^3 needs 12 GiB; sparse it needs 12 bytes
+// per surface voxel (tens of MiB), and a kernel pays one extra 8-byte load for the rank
+// (bench/grid_view_bench.cpp measures the two against each other). Kernels read all of it through
+// kernels/grid_view.h.
+#pragma once
+
+#include <cstdint>
+
+#include "cl/cl_runtime.h"
+#include "cl/scratch_buffers.h"
+#include "core/grid_spec.h"
+#include "grid/channel_table.h"
+#include "grid/voxel_grid.h"
+#include "voxr_layout.h"
+
+namespace voxr {
+
+class DeviceVoxelGrid;
+
+// The arguments of a kernel's VOXR_GRID_VIEW_PARAMS (kernels/grid_view.h), for ClRuntime::launch.
+struct GridViewArgs {
+  VoxGridView view{};
+  const cl::Buffer* occ = nullptr;
+  const cl::Buffer* ranked = nullptr;
+  const cl::Buffer* count = nullptr;
+  const cl::Buffer* normal = nullptr;
+  const cl::Buffer* material = nullptr;
+  const cl::Buffer* inside = nullptr;
+  void set_kernel_args(cl::Kernel& kernel, cl_uint& index) const;
+};
+
+class DeviceVoxelGrid {
+ public:
+  GridSpec spec;
+  ChannelSet channels;          // the channels present
+  uint64_t voxels_set = 0;      // set voxels: the length of every sparse channel (valid with the rank index)
+  uint64_t inside_voxels = 0;   // set inside bits (when channels has inside)
+  bool has_rank_index = false;  // whether `ranked` describes the current occupancy
+
+  GrowingBuffer occ, inside, ranked;
+  GrowingBuffer count, normal_sum, normal, material;
+
+  uint64_t words() const { return (spec.voxel_count() + 31) / 32; }
+  // Device memory the present channels use.
+  uint64_t device_bytes() const;
+  VoxGridView view() const;
+  // view() and the channel buffers; absent channels get a 4-byte placeholder (never read: grid_view.h
+  // checks the channel bits). Throws voxr::InternalError when a sparse channel lacks the rank index.
+  GridViewArgs view_args(ClRuntime& cl);
+
+  // Starts a new result on `grid` with `channels`: clears the flags and counts; buffers are kept for reuse.
+  void reset(const GridSpec& grid, ChannelSet channels);
+
+ private:
+  GrowingBuffer placeholder_;
+};
+
+// Builds the rank index from the occupancy (scan.cl) and sets voxels_set; nothing when it is current.
+void build_rank_index(ClRuntime& cl, DeviceVoxelGrid& grid);
+
+// Every present channel copied into a host VoxelGrid. voxels_set comes from the rank index when there is
+// one, else from the occupancy read back.
+VoxelGrid read_back(ClRuntime& cl, const DeviceVoxelGrid& grid);
+
+}  // namespace voxr

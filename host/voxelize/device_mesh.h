@@ -1,0 +1,45 @@
+// A triangle mesh on the device, uploaded once and voxelized any number of times (frames, benchmark
+// repeats, the surface and solid stages of one run).
+#pragma once
+
+#include <cstdint>
+
+#include "cl/cl_runtime.h"
+#include "core/grid_spec.h"
+#include "core/triangle_soup.h"
+#include "voxelize/triangle_splitter.h"
+
+namespace voxr {
+
+class DeviceMesh {
+ public:
+  // Uploads `soup` as it is: positions as float4, triangles as uint4 (indices, material). Its triangles must
+  // not need splitting for the grids it is voxelized on (see upload_mesh). `bounds`, when given, must
+  // contain the soup's used vertices (it saves a pass over them). Throws voxr::Error beyond 2^32-1
+  // triangles.
+  DeviceMesh(ClRuntime& cl, const TriangleSoup& soup, const Bounds* bounds = nullptr);
+
+  uint32_t triangle_count() const { return triangle_count_; }
+  const Bounds& bounds() const { return bounds_; }  // world bounds of the used vertices
+  const cl::Buffer& positions() const { return positions_; }
+  const cl::Buffer& triangles() const { return triangles_; }
+  uint64_t triangles_split() const { return triangles_split_; }  // set by upload_mesh
+  double upload_ms() const { return upload_ms_; }                // profiled transfer time
+
+ private:
+  friend DeviceMesh upload_mesh(ClRuntime&, const TriangleSoup&, const GridSpec&, SplitCull, const Bounds*);
+  cl::Buffer positions_;
+  cl::Buffer triangles_;
+  uint32_t triangle_count_ = 0;
+  Bounds bounds_;
+  uint64_t triangles_split_ = 0;
+  double upload_ms_ = 0.0;
+};
+
+// Splits the triangles too long for the exact predicates on `grid` (triangle_splitter.h, `cull` says which
+// pieces may go) and uploads the result; waits for the upload. `bounds` as for the constructor (the pieces
+// of split triangles stay inside the input's bounds).
+DeviceMesh upload_mesh(ClRuntime& cl, const TriangleSoup& soup, const GridSpec& grid, SplitCull cull,
+                       const Bounds* bounds = nullptr);
+
+}  // namespace voxr

@@ -1,0 +1,126 @@
+#include "voxelize/voxelizer.h"
+
+#include "voxelize/slice_voxelizer.h"
+#include "voxelize/slicemap_voxelizer.h"
+#include "voxelize/solid_fill.h"
+
+namespace voxr {
+
+const MethodInfo& method_info(VoxelizeMethod method) {
+  for (const MethodInfo& info : kMethods)
+    if (info.method == method) return info;
+  throw InternalError("method missing from kMethods");
+}
+
+VoxelizeMethod parse_voxelize_method(std::string_view name) {
+  std::string known;
+  for (const MethodInfo& info : kMethods) {
+    if (name == info.name) return info.method;
+    known += fmt::format("{}{}", known.empty() ? "" : ", ", info.name);
+  }
+  fail("unknown method '{}' (methods: {})", name, known);
+}
+
+std::unique_ptr<SurfaceVoxelizer> make_surface_voxelizer(ClRuntime& cl, VoxelizeMethod method) {
+  switch (method) {
+    case VoxelizeMethod::kHybrid:
+    case VoxelizeMethod::kSlice:
+    case VoxelizeMethod::kGrid:
+      return std::make_unique<SliceVoxelizer>(cl, method);
+    case VoxelizeMethod::kSlicemap:
+      return std::make_unique<SlicemapVoxelizer>(cl);
+  }
+  throw InternalError("method missing from make_surface_voxelizer");
+}
+
+void VoxelizeOptions::validate() const {
+  const MethodInfo& info = method_info(method);
+  ChannelSet surface = channels;
+  surface.remove(Channel::kInside);
+  if (!info.attributes && surface.sparse())
+    fail("--method {} produces the occ channel only (asked for {})", info.name, surface.to_string());
+  if (!info.modes && mode != RasterMode::kConservative)
+    fail("--mode does not apply to --method {} (it samples column centres)", info.name);
+  if (channels.has(Channel::kInside) && !solid)
+    fail("the inside channel comes from solid voxelization: add --solid xor|late|parity|flood");
+  if (rows_per_copy == 0) fail("rows per copy must be at least 1");
+}
+
+ChannelSet VoxelizeOptions::result_channels() const {
+  ChannelSet set = channels;
+  if (solid) set.add(Channel::kInside);
+  return set;
+}
+
+Voxelizer::Voxelizer(ClRuntime& cl) : cl_(cl) {}
+Voxelizer::~Voxelizer() = default;
+
+SurfaceVoxelizer& Voxelizer::surface(VoxelizeMethod method) {
+  std::unique_ptr<SurfaceVoxelizer>& slot = surfaces_[method];
+  if (!slot) slot = make_surface_voxelizer(cl_, method);
+  return *slot;
+}
+
+void Voxelizer::prepare(const VoxelizeOptions& options) {
+  options.validate();
+  VoxelizeOptions surface_options = options;
+  surface_options.channels.remove(Channel::kInside);
+  cl_.build_programs(surface(options.method).programs(surface_options));
+  if (options.solid) {
+    if (!solid_) solid_ = std::make_unique<SolidFill>(cl_);
+    cl_.build_programs(solid_->programs(*options.solid));
+  }
+}
+
+void Voxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                    DeviceVoxelGrid& out, VoxelizeStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  options.validate();
+  cl_.finish();
+  const auto before = cl_.profiler().stats();
+  VoxelizeOptions surface_options = options;
+  surface_options.channels.remove(Channel::kInside);
+  out.reset(grid, options.result_channels());
+  VoxelizeStats local;
+  surface(options.method).run(mesh, grid, surface_options, out, local);
+  if (options.solid) {
+    if (options.progress) options.progress("solid");
+    if (!solid_) solid_ = std::make_unique<SolidFill>(cl_);
+    const bool conservative_surface =
+        options.mode == RasterMode::kConservative && method_info(options.method).modes;
+    solid_->run(mesh, grid, *options.solid, conservative_surface, out, local);
+  }
+  cl_.finish("voxelizing");
+  local.voxels_set = out.voxels_set;
+  local.inside_voxels = out.inside_voxels;
+  local.triangles_split = mesh.triangles_split();
+  local.device_bytes += out.device_bytes();
+  const Profiler::Split split = cl_.profiler().since(before);
+  local.kernels_ms = split.kernels_ms;
+  local.stage_ms = split.stage_ms;
+  local.readback_ms = split.readback_ms;  // the small counts read between stages
+  local.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (stats) *stats = local;
+}
+
+VoxelGrid Voxelizer::run(const TriangleSoup& soup, const GridSpec& grid, const VoxelizeOptions& options,
+                         VoxelizeStats* stats, const Bounds* bounds) {
+  const auto start = std::chrono::steady_clock::now();
+  options.validate();
+  if (options.progress) options.progress("upload");
+  const DeviceMesh mesh =
+      upload_mesh(cl_, soup, grid, options.solid ? SplitCull::kColumns : SplitCull::kGrid, bounds);
+  VoxelizeStats local;
+  run(mesh, grid, options, grid_, &local);
+  if (options.progress) options.progress("readback");
+  const auto before = cl_.profiler().stats();
+  VoxelGrid result = read_back(cl_, grid_);
+  local.voxels_set = result.voxels_set;
+  local.upload_ms = mesh.upload_ms();
+  local.readback_ms += cl_.profiler().since(before).readback_ms;
+  local.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (stats) *stats = local;
+  return result;
+}
+
+}  // namespace voxr
