@@ -53,7 +53,7 @@ ChannelSet ChannelSet::parse(std::string_view list) {
 std::string ChannelSet::to_string() const {
   std::string s;
   for (const ChannelInfo& info : kChannelTable)
-    if (has(info.channel)) s += (s.empty() ? "" : ",") + std::string(info.name);
+    if (has(info.channel)) s += fmt::format("{}{}", s.empty() ? "" : ",", info.name);
   return s;
 }
 
