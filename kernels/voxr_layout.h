@@ -1,9 +1,9 @@
 /* voxr_layout.h — the one description of everything the host and the kernels both read: parameter blocks
  * passed by value, the records one stage writes and another reads, and the packing of shared words.
  * Written in the C subset that OpenCL C 1.2 and C++20 both accept: fixed-size scalar arrays, no vector
- * types, no padding surprises (every member is 4 bytes wide). host/voxelize/layout_checks.cpp
- * static_asserts the sizes and tests/layout_test.cpp compares every size and offset with the values a
- * kernel (kernels/layout_probe.cl) measures on the device. */
+ * types, no padding surprises (every member is 4 bytes wide). host/cl/layout_checks.cpp static_asserts
+ * the sizes, and tests/layout_test.cpp compares every entry of VOXR_LAYOUT_ENTRIES with the value a kernel
+ * (kernels/layout_probe.cl) measures on the device. */
 #ifndef VOXR_LAYOUT_H
 #define VOXR_LAYOUT_H
 
@@ -105,5 +105,22 @@ typedef struct VoxGridView {
   uint voxels_set;         /* entries of each sparse channel */
   uint pad[2];
 } VoxGridView;
+
+/* Every size and offset the host and the device must agree on, in one list that both expand: SIZE(T) for a
+ * struct, OFFSET(T, field) for a member. */
+#define VOXR_LAYOUT_ENTRIES(SIZE, OFFSET)                                                              \
+  SIZE(VoxGridParams)                                                                                  \
+  OFFSET(VoxGridParams, world_to_grid) OFFSET(VoxGridParams, dims) OFFSET(VoxGridParams, rows_per_copy) \
+  OFFSET(VoxGridParams, triangle_count) OFFSET(VoxGridParams, margin)                                   \
+  SIZE(VoxCopy) OFFSET(VoxCopy, triangle) OFFSET(VoxCopy, slice_block)                                  \
+  SIZE(VoxCopyInfo) OFFSET(VoxCopyInfo, first_slab) OFFSET(VoxCopyInfo, row_blocks)                     \
+  SIZE(VoxSnappedTriangle) OFFSET(VoxSnappedTriangle, x) OFFSET(VoxSnappedTriangle, y)                  \
+  OFFSET(VoxSnappedTriangle, z) OFFSET(VoxSnappedTriangle, material)                                    \
+  SIZE(SlicemapTiles) OFFSET(SlicemapTiles, rows) OFFSET(SlicemapTiles, cols)                           \
+  SIZE(SlicemapRecord) OFFSET(SlicemapRecord, triangle) OFFSET(SlicemapRecord, tile)                    \
+  SIZE(VoxSolidLayout) OFFSET(VoxSolidLayout, dims) OFFSET(VoxSolidLayout, words_x)                     \
+  OFFSET(VoxSolidLayout, slice_words)                                                                   \
+  SIZE(VoxGridView) OFFSET(VoxGridView, world_to_grid) OFFSET(VoxGridView, dims)                        \
+  OFFSET(VoxGridView, channels) OFFSET(VoxGridView, voxels_set)
 
 #endif

@@ -82,7 +82,6 @@ VoxelGrid read_back(ClRuntime& cl, const DeviceVoxelGrid& grid) {
     cl.download(grid.count.buffer, out.count.data(), n * 4, "readback count");
   }
   if (grid.channels.has(Channel::kNormal)) {
-    static_assert(sizeof(glm::ivec3) == 12 && sizeof(glm::vec3) == 12);
     out.normal_sum.resize(n);
     out.normal.resize(n);
     cl.download(grid.normal_sum.buffer, out.normal_sum.data(), n * 12, "readback normal sums");

@@ -4,7 +4,6 @@
 
 namespace voxr {
 
-static_assert(sizeof(glm::vec4) == sizeof(cl_float4) && sizeof(glm::uvec4) == sizeof(cl_uint4));
 
 DeviceMesh::DeviceMesh(ClRuntime& cl, const TriangleSoup& soup, const Bounds* bounds) {
   if (soup.triangle_count() > 0xffffffffull) fail("{} triangles are more than 2^32-1", soup.triangle_count());

@@ -1,0 +1,22 @@
+// The host's side of kernels/voxr_layout.h: every shared struct has the size the kernels assume (the
+// device's own sizes and offsets are compared by tests/layout_test.cpp), and the host types that mirror
+// kernel vector types have their width.
+#include <glm/glm.hpp>
+
+#include "cl/cl_runtime.h"
+#include "voxr_layout.h"
+
+namespace voxr {
+
+static_assert(sizeof(VoxGridParams) == 80);
+static_assert(sizeof(VoxCopy) == 8);
+static_assert(sizeof(VoxCopyInfo) == 8);
+static_assert(sizeof(VoxSnappedTriangle) == 48);
+static_assert(sizeof(SlicemapTiles) == 8);
+static_assert(sizeof(SlicemapRecord) == 8);
+static_assert(sizeof(VoxSolidLayout) == 32);
+static_assert(sizeof(VoxGridView) == 80);
+static_assert(sizeof(glm::vec4) == sizeof(cl_float4) && sizeof(glm::uvec4) == sizeof(cl_uint4));
+static_assert(sizeof(glm::ivec3) == 12 && sizeof(glm::vec3) == 12, "sparse int3/float3 channels are packed");
+
+}  // namespace voxr
