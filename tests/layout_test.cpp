@@ -20,7 +20,8 @@ struct Entry {
 std::vector<Entry> host_entries() {
   std::vector<Entry> entries;
 #define HOST_SIZE(T) entries.push_back({"sizeof(" #T ")", cl_uint(sizeof(T))});
-#define HOST_OFFSET(T, field) entries.push_back({"offsetof(" #T ", " #field ")", cl_uint(offsetof(T, field))});
+#define HOST_OFFSET(T, field) \
+  entries.push_back({"offsetof(" #T ", " #field ")", cl_uint(offsetof(T, field))});
   VOXR_LAYOUT_ENTRIES(HOST_SIZE, HOST_OFFSET)
 #undef HOST_SIZE
 #undef HOST_OFFSET

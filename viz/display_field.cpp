@@ -11,15 +11,26 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "grid/channel_table.h"
 
 namespace voxr::view {
 
 ChannelKind channel_kind(const std::string& name) {
-  if (name == "occupancy") return ChannelKind::kOccupancy;
-  if (name == "inside") return ChannelKind::kInside;
-  if (name == "count" || name.rfind("absorption", 0) == 0) return ChannelKind::kCount;
-  if (name == "normal") return ChannelKind::kNormal;
-  if (name == "material") return ChannelKind::kMaterial;
+  if (name.rfind("absorption", 0) == 0) return ChannelKind::kCount;  // shown like a count: a heat ramp
+  const ChannelInfo* info = find_channel_array(name);
+  if (!info) return ChannelKind::kGeneric;
+  switch (info->channel) {
+    case Channel::kOcc:
+      return ChannelKind::kOccupancy;
+    case Channel::kCount:
+      return ChannelKind::kCount;
+    case Channel::kNormal:
+      return ChannelKind::kNormal;
+    case Channel::kMaterial:
+      return ChannelKind::kMaterial;
+    case Channel::kInside:
+      return ChannelKind::kInside;
+  }
   return ChannelKind::kGeneric;
 }
 
@@ -67,7 +78,8 @@ DisplayField make_display_field(const Volume& volume, const std::string& array, 
   vtkDataArray* mask_source = nullptr;
   if (f.kind == ChannelKind::kInside)
     mask_source = values;
-  else if (vtkDataArray* occ = pd->GetArray("occupancy"); occ && occ->GetNumberOfComponents() == 1)
+  else if (vtkDataArray* occ = pd->GetArray(channel_info(Channel::kOcc).array_name);
+           occ && occ->GetNumberOfComponents() == 1)
     mask_source = occ;
   auto mask = vtkSmartPointer<vtkUnsignedCharArray>::New();
   mask->SetName("mask");

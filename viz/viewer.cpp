@@ -1,5 +1,7 @@
 #include "viewer.h"
 
+#include "grid/channel_table.h"
+
 #include <vtkCamera.h>
 #include <vtkDataArray.h>
 #include <vtkMatrix4x4.h>
@@ -58,7 +60,8 @@ std::string format_number(double v) {
 Viewer::Viewer(Volume volume, const ViewOptions& options) : volume_(std::move(volume)), options_(options) {
   // Everything that can be wrong with the input is checked here, before the display is touched.
   std::string array = options_.array;
-  if (array.empty()) array = volume_.has_array("occupancy") ? "occupancy" : volume_.arrays.front();
+  const std::string occupancy = channel_info(Channel::kOcc).array_name;
+  if (array.empty()) array = volume_.has_array(occupancy) ? occupancy : volume_.arrays.front();
   if (!volume_.has_array(array))
     fail("--array '{}': {} has no such array (arrays: {})", array, volume_.source.filename().string(),
          array_list(volume_));

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "grid/channel_table.h"
 #include "vtk_messages.h"
 
 namespace voxr::view {
@@ -27,9 +28,6 @@ bool Volume::has_array(const std::string& name) const {
 }
 
 namespace {
-
-// voxr's channels in the order the viewer lists them; other arrays follow in file order.
-constexpr std::array<const char*, 5> kChannelOrder{"occupancy", "count", "normal", "material", "inside"};
 
 std::string lower(std::string s) {
   for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -68,10 +66,11 @@ vtkSmartPointer<vtkMatrix4x4> take_direction(vtkImageData* image) {
   return m;
 }
 
+// voxr's channels first, in the channel table's order; other arrays follow in file order.
 void order_arrays(Volume& v) {
   vtkPointData* pd = v.image->GetPointData();
-  for (const char* name : kChannelOrder)
-    if (pd->GetArray(name)) v.arrays.push_back(name);
+  for (const ChannelInfo& info : kChannelTable)
+    if (pd->GetArray(info.array_name)) v.arrays.push_back(info.array_name);
   for (int i = 0; i < pd->GetNumberOfArrays(); ++i) {
     const char* name = pd->GetArrayName(i);
     if (name && !v.has_array(name)) v.arrays.push_back(name);
@@ -192,8 +191,8 @@ fs::path nrrd_set_base(const fs::path& file) {
   const std::string suffix = stem.extension().string();  // ".count"
   if (suffix.size() > 1) {
     const std::string channel = suffix.substr(1);
-    if (std::find_if(kChannelOrder.begin(), kChannelOrder.end(),
-                     [&](const char* c) { return channel == c; }) != kChannelOrder.end()) {
+    if (std::any_of(kChannelTable.begin(), kChannelTable.end(),
+                    [&](const ChannelInfo& info) { return channel == info.name; })) {
       fs::path base = file.parent_path() / stem.stem();
       base += file.extension();
       std::error_code ec;

@@ -54,6 +54,11 @@ void write_dense_bits(OutputFile& file, const std::vector<uint32_t>& bits, uint6
   }
 }
 
+// "voxr <array name>": the content line voxr-view reads the array name from.
+std::string content(Channel channel) {
+  return fmt::format("voxr {}", channel_info(channel).array_name);
+}
+
 }  // namespace
 
 fs::path nrrd_channel_path(const fs::path& out, Channel channel) {
@@ -69,20 +74,20 @@ std::vector<fs::path> write_nrrd(const VoxelGrid& grid, const fs::path& out) {
 
   std::vector<std::unique_ptr<OutputFile>> files;
   files.push_back(std::make_unique<OutputFile>(out));
-  files.back()->write(nrrd_header(spec, "uint8", false, "voxr occupancy"));
+  files.back()->write(nrrd_header(spec, "uint8", false, content(Channel::kOcc).c_str()));
   write_dense<uint8_t>(*files.back(), grid, 1, [](uint8_t* v, uint64_t) { *v = 1; });
   files.back()->close();
 
   if (grid.channels.has(Channel::kCount)) {
     files.push_back(std::make_unique<OutputFile>(nrrd_channel_path(out, Channel::kCount)));
-    files.back()->write(nrrd_header(spec, "uint32", false, "voxr count"));
+    files.back()->write(nrrd_header(spec, "uint32", false, content(Channel::kCount).c_str()));
     write_dense<uint32_t>(*files.back(), grid, 1, [&](uint32_t* v, uint64_t r) { *v = grid.count[r]; });
     files.back()->close();
   }
   if (grid.channels.has(Channel::kNormal)) {
     const NormalChannel normal(grid);
     files.push_back(std::make_unique<OutputFile>(nrrd_channel_path(out, Channel::kNormal)));
-    files.back()->write(nrrd_header(spec, "float", true, "voxr normal"));
+    files.back()->write(nrrd_header(spec, "float", true, content(Channel::kNormal).c_str()));
     write_dense<float>(*files.back(), grid, 3, [&](float* v, uint64_t r) {
       const glm::vec3 n = normal(r);
       v[0] = n.x;
@@ -93,14 +98,14 @@ std::vector<fs::path> write_nrrd(const VoxelGrid& grid, const fs::path& out) {
   }
   if (grid.channels.has(Channel::kMaterial)) {
     files.push_back(std::make_unique<OutputFile>(nrrd_channel_path(out, Channel::kMaterial)));
-    files.back()->write(nrrd_header(spec, "uint32", false, "voxr material"));
+    files.back()->write(nrrd_header(spec, "uint32", false, content(Channel::kMaterial).c_str()));
     write_dense<uint32_t>(*files.back(), grid, 1, [&](uint32_t* v, uint64_t r) { *v = grid.material[r]; });
     files.back()->close();
   }
   if (grid.channels.has(Channel::kInside)) {
     VOXR_CHECK_EQ(grid.inside.size(), grid.occ.size());
     files.push_back(std::make_unique<OutputFile>(nrrd_channel_path(out, Channel::kInside)));
-    files.back()->write(nrrd_header(spec, "uint8", false, "voxr inside"));
+    files.back()->write(nrrd_header(spec, "uint8", false, content(Channel::kInside).c_str()));
     write_dense_bits(*files.back(), grid.inside, spec.voxel_count());
     files.back()->close();
   }

@@ -24,6 +24,19 @@ struct VtiArray {
   uint64_t value_bytes;  // bytes per component
 };
 
+// The VTK type name and bytes of a channel table element type.
+std::pair<const char*, uint64_t> vtk_type(ElementType type) {
+  switch (type) {
+    case ElementType::kUInt8:
+      return {"UInt8", 1};
+    case ElementType::kUInt32:
+      return {"UInt32", 4};
+    case ElementType::kFloat32:
+      return {"Float32", 4};
+  }
+  throw InternalError("unhandled element type");
+}
+
 }  // namespace
 
 fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
@@ -32,15 +45,14 @@ fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
   const GridSpec& spec = grid.spec;
   const uint64_t n = spec.voxel_count();
 
-  std::vector<VtiArray> arrays{{Channel::kOcc, "occupancy", "UInt8", 1, 1}};
-  if (grid.channels.has(Channel::kCount)) arrays.push_back({Channel::kCount, "count", "UInt32", 1, 4});
-  if (grid.channels.has(Channel::kNormal)) arrays.push_back({Channel::kNormal, "normal", "Float32", 3, 4});
-  if (grid.channels.has(Channel::kMaterial))
-    arrays.push_back({Channel::kMaterial, "material", "UInt32", 1, 4});
-  if (grid.channels.has(Channel::kInside)) {
-    VOXR_CHECK_EQ(grid.inside.size(), grid.occ.size());
-    arrays.push_back({Channel::kInside, "inside", "UInt8", 1, 1});
+  // One array per present channel, named and typed by the channel table (occupancy always).
+  std::vector<VtiArray> arrays;
+  for (const ChannelInfo& info : kChannelTable) {
+    if (!grid.channels.has(info.channel) && info.channel != Channel::kOcc) continue;
+    const auto [type, bytes] = vtk_type(info.type);
+    arrays.push_back({info.channel, info.array_name, type, info.components, bytes});
   }
+  if (grid.channels.has(Channel::kInside)) VOXR_CHECK_EQ(grid.inside.size(), grid.occ.size());
 
   const glm::vec3 origin = spec.voxel_center_world(0, 0, 0);
   const std::string extent = fmt::format("0 {} 0 {} 0 {}", spec.dims.x - 1, spec.dims.y - 1, spec.dims.z - 1);
@@ -55,8 +67,10 @@ fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
       "  <ImageData WholeExtent=\"{}\" Origin=\"{} {} {}\" Spacing=\"{} {} {}\" Direction=\"{}\">\n", extent,
       origin.x, origin.y, origin.z, spec.voxel_size, spec.voxel_size, spec.voxel_size, direction);
   xml += fmt::format("    <Piece Extent=\"{}\">\n", extent);
-  xml += fmt::format("      <PointData Scalars=\"occupancy\"{}>\n",
-                     grid.channels.has(Channel::kNormal) ? " Vectors=\"normal\"" : "");
+  xml += fmt::format("      <PointData Scalars=\"{}\"{}>\n", channel_info(Channel::kOcc).array_name,
+                     grid.channels.has(Channel::kNormal)
+                         ? fmt::format(" Vectors=\"{}\"", channel_info(Channel::kNormal).array_name)
+                         : "");
   uint64_t offset = 0;
   for (const VtiArray& a : arrays) {
     xml += fmt::format(
