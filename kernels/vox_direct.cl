@@ -142,10 +142,11 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
   }
 
   VoxWriter w;
-  vox_writer_init(&w, tri.w, occ, ranked, acc, material);
+  vox_writer_init(&w, tri.w, grid.channels, occ, ranked, acc, material);
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
-#if VOX_PASS == 1 && (VOX_CHANNELS & VOX_CH_NORMAL)
-  vox_fixed_normal(vox_cross((long3)(x1 - x0, y1 - y0, z1 - z0), (long3)(x2 - x0, y2 - y0, z2 - z0)), &w.normal);
+#if VOX_PASS == 1
+  if (grid.channels & VOX_CH_NORMAL)
+    vox_fixed_normal(vox_cross((long3)(x1 - x0, y1 - y0, z1 - z0), (long3)(x2 - x0, y2 - y0, z2 - z0)), &w.normal);
 #endif
   const long bx = (long)fx * VOX_S, by = (long)fy * VOX_S, bz = (long)fz * VOX_S;
   const int u0x = (int)(x0 - bx), u0y = (int)(y0 - by), u0z = (int)(z0 - bz);
@@ -162,8 +163,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
   t.v[2][0] = x2, t.v[2][1] = y2, t.v[2][2] = z2;
   vox_derive(&t, &grid);
   if (t.n[2] == 0) return; /* edge-on: covers no column centre */
-#if VOX_PASS == 1 && (VOX_CHANNELS & VOX_CH_NORMAL)
-  vox_fixed_normal(vox_tri_normal(&t), &w.normal);
+#if VOX_PASS == 1
+  if (grid.channels & VOX_CH_NORMAL) vox_fixed_normal(vox_tri_normal(&t), &w.normal);
 #endif
   VoxRule rule;
   vox_rule_init(&rule, &t, &grid);

@@ -1,26 +1,25 @@
 /* vox_finalize.cl — unpacks the attribute accumulators of the second raster pass (vox_scanline.h):
  * acc[2r] = sum(n.x) + count * 2^32, acc[2r+1] = sum(n.y) + sum(n.z) * 2^32 (each sum below 2^31 in
  * magnitude), into the count, the fixed-point normal sum and the unit normal (zero where the sum cancels,
- * e.g. a voxel touched by both sides of a thin sheet). VOX_CHANNELS selects the outputs written.
+ * e.g. a voxel touched by both sides of a thin sheet). `channels` (ChannelSet bits) selects the outputs.
  * shape: one work item per set voxel. */
 #ifndef WG_SIZE
 #define WG_SIZE 64
 #endif
-/* VOX_CHANNELS and the channel bits VOX_CH_* come from the channel table (host/grid/channel_table.h). */
+/* The channel bits VOX_CH_* come from the channel table (host/grid/channel_table.h). */
 #ifndef VOX_CH_COUNT
 #error "vox_finalize needs the channel defines of host/grid/channel_table.h"
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_finalize(
-    __global const long* acc, __global uint* count, __global int* nsum, __global float* normal, uint voxel_count) {
+    __global const long* acc, __global uint* count, __global int* nsum, __global float* normal, uint voxel_count,
+    uint channels) {
   const uint r = get_global_id(0);
   if (r >= voxel_count) return;
   const long p0 = acc[2 * (ulong)r];
   const int nx = as_int((uint)p0);
-#if VOX_CHANNELS & VOX_CH_COUNT
-  count[r] = (uint)((p0 - nx) / (1L << 32));
-#endif
-#if VOX_CHANNELS & VOX_CH_NORMAL
+  if (channels & VOX_CH_COUNT) count[r] = (uint)((p0 - nx) / (1L << 32));
+  if (!(channels & VOX_CH_NORMAL)) return;
   const long p1 = acc[2 * (ulong)r + 1];
   const int ny = as_int((uint)p1);
   const int nz = (int)((p1 - ny) / (1L << 32)); /* exact: the difference is a multiple */
@@ -34,5 +33,4 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_finalize(
   normal[base] = n.x;
   normal[base + 1] = n.y;
   normal[base + 2] = n.z;
-#endif
 }

@@ -8,8 +8,9 @@
  * Float clipping of the triangle against the slab and each row only narrows the candidate range (with a
  * margin far above float error); membership is always decided by the exact integer test.
  * VOX_PASS 0 sets occupancy bits (one atomic_or per 32 voxels of a row). VOX_PASS 1 runs after the ranks
- * of set voxels are known and adds the attributes VOX_CHANNELS asks for (VOX_CH_COUNT, VOX_CH_NORMAL: sum,
- * VOX_CH_MATERIAL) at each voxel's rank. Count and normal sum share two 64-bit accumulators per voxel so a write
+ * of set voxels are known and adds the attributes that VoxGridParams.channels asks for (VOX_CH_COUNT,
+ * VOX_CH_NORMAL: sum, VOX_CH_MATERIAL; a runtime mask, so one program serves every subset) at each voxel's
+ * rank. Count and normal sum share two 64-bit accumulators per voxel so a write
  * costs two atomics, not four: acc[2r] += n.x + 2^32 (count in the high half), acc[2r+1] += n.y + n.z*2^32.
  * Two's complement makes the packed sums exact; vox_finalize.cl unpacks them. */
 #ifndef VOX_SCANLINE_H
@@ -23,16 +24,13 @@
 #ifndef VOX_PASS
 #define VOX_PASS 0
 #endif
-#ifndef VOX_CHANNELS
-#define VOX_CHANNELS 0
-#endif
 /* Triangles spanning fewer than this many cells per axis skip the float clipping. */
 #ifndef VOX_SMALL_SPAN
 #define VOX_SMALL_SPAN 3
 #endif
 #define VOX_CLIP_MARGIN 0.0625f
 
-/* VOX_CHANNELS and the channel bits VOX_CH_* come from the channel table (host/grid/channel_table.h). */
+/* The channel bits VOX_CH_* come from the channel table (host/grid/channel_table.h). */
 #if VOX_PASS == 1 && !defined(VOX_CH_COUNT)
 #error "pass 1 needs the channel defines of host/grid/channel_table.h"
 #endif
@@ -103,6 +101,7 @@ typedef struct VoxWriter {
   ulong word_ranked; /* pass 1: ranked[word] */
   int3 normal; /* pass 1: the triangle's fixed-point unit normal (vox_fixed_normal) */
   uint material_id;
+  uint channels; /* pass 1: the channels to accumulate */
 } VoxWriter;
 
 inline void vox_flush(VoxWriter* w) {
@@ -129,16 +128,11 @@ inline void vox_emit(VoxWriter* w, ulong linear) {
     w->word_ranked = w->ranked[word];
   }
   const ulong rank = VOXR_RANKED_RANK(w->word_ranked) + popcount(VOXR_RANKED_BITS(w->word_ranked) & (bit - 1u));
-#if VOX_CHANNELS & (VOX_CH_COUNT | VOX_CH_NORMAL)
-  atom_add(w->acc + 2 * rank, (long)w->normal.x + (1L << 32));
-#endif
-#if VOX_CHANNELS & VOX_CH_NORMAL
+  if (w->channels & (VOX_CH_COUNT | VOX_CH_NORMAL)) atom_add(w->acc + 2 * rank, (long)w->normal.x + (1L << 32));
   /* A multiplication, not a shift: shifting a negative value left is undefined in OpenCL C. */
-  atom_add(w->acc + 2 * rank + 1, (long)w->normal.y + (long)w->normal.z * (1L << 32));
-#endif
-#if VOX_CHANNELS & VOX_CH_MATERIAL
-  atomic_max(w->material + rank, w->material_id);
-#endif
+  if (w->channels & VOX_CH_NORMAL)
+    atom_add(w->acc + 2 * rank + 1, (long)w->normal.y + (long)w->normal.z * (1L << 32));
+  if (w->channels & VOX_CH_MATERIAL) atomic_max(w->material + rank, w->material_id);
 #endif
 }
 
@@ -224,8 +218,8 @@ inline void vox_rule_init(VoxRule* r, const VoxTri* t, const VoxGridParams* grid
 }
 
 /* A writer for one triangle (pass 1 with normals: set w->normal with vox_fixed_normal afterwards). */
-inline void vox_writer_init(VoxWriter* w, uint material_id, __global uint* occ, __global const ulong* ranked,
-                            __global long* acc, __global uint* material) {
+inline void vox_writer_init(VoxWriter* w, uint material_id, uint channels, __global uint* occ,
+                            __global const ulong* ranked, __global long* acc, __global uint* material) {
   w->occ = occ;
   w->ranked = ranked;
   w->acc = acc;
@@ -233,6 +227,7 @@ inline void vox_writer_init(VoxWriter* w, uint material_id, __global uint* occ, 
   w->word = ~0UL;
   w->mask = 0;
   w->material_id = material_id;
+  w->channels = channels;
   w->normal = (int3)(0);
 }
 

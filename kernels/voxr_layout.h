@@ -38,9 +38,9 @@ typedef struct VoxGridParams {
   uint dims[4];            /* x, y, z, unused */
   uint rows_per_copy;      /* rows of one slab that a single raster work item handles */
   uint triangle_count;
-  uint margin; /* conservative mode: voxel boxes are widened by this many 1/VOXR_SUBVOXEL units on every
-                  side, the bound on how far snapping and the float transform move a vertex */
-  uint pad;
+  uint margin;   /* conservative mode: voxel boxes are widened by this many 1/VOXR_SUBVOXEL units on every
+                    side, the bound on how far snapping and the float transform move a vertex */
+  uint channels; /* attribute pass: the ChannelSet bits to accumulate (host/grid/channel_table.h) */
 } VoxGridParams;
 
 /* One duplicated triangle: the "geometry shader" output. The slice (slab k) and the block of rows inside
@@ -111,7 +111,7 @@ typedef struct VoxGridView {
 #define VOXR_LAYOUT_ENTRIES(SIZE, OFFSET)                                                              \
   SIZE(VoxGridParams)                                                                                  \
   OFFSET(VoxGridParams, world_to_grid) OFFSET(VoxGridParams, dims) OFFSET(VoxGridParams, rows_per_copy) \
-  OFFSET(VoxGridParams, triangle_count) OFFSET(VoxGridParams, margin)                                   \
+  OFFSET(VoxGridParams, triangle_count) OFFSET(VoxGridParams, margin) OFFSET(VoxGridParams, channels)   \
   SIZE(VoxCopy) OFFSET(VoxCopy, triangle) OFFSET(VoxCopy, slice_block)                                  \
   SIZE(VoxCopyInfo) OFFSET(VoxCopyInfo, first_slab) OFFSET(VoxCopyInfo, row_blocks)                     \
   SIZE(VoxSnappedTriangle) OFFSET(VoxSnappedTriangle, x) OFFSET(VoxSnappedTriangle, y)                  \

@@ -183,6 +183,53 @@ TEST(Cli, SolidParityOnAnOpenMeshWarnsAndFillsLate) {
   EXPECT_EQ(nlohmann::json::parse(slurp(scratch() / "open.json"))["solid"]["mode"], "late");
 }
 
+TEST(Cli, ReportIsCompleteForEveryMode) {
+  // Surface methods, solid modes and channels in one call: every report has the voxels set, the timings
+  // (wall included) and, with --solid, the interior; the surface and the solid come from one run.
+  const fs::path mesh =
+      write_file("cube-report.obj",
+                 "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\n"
+                 "v 1 1 1\nf 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\n"
+                 "f 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n");
+  const std::pair<const char*, const char*> modes[] = {
+      {"", "occ"},
+      {"--method slice --mode center", "occ"},
+      {"--method grid --channels occ,count", "occ,count"},
+      {"--method slicemap --slicing local", "occ"},
+      {"--solid parity --channels occ,count,normal,material", "occ,count,normal,material,inside"},
+      {"--solid late --channels occ,normal", "occ,normal,inside"},
+      {"--solid flood", "occ,inside"},
+      {"--solid xor --mode center", "occ,inside"},
+  };
+  for (const auto& [flags, channels] : modes) {
+    const fs::path report = scratch() / "modes.json";
+    const Result r =
+        run("voxelize " + mesh.string() + " --res 20 -q " + flags + " --report " + report.string());
+    ASSERT_EQ(r.code, 0) << flags << ": " << r.err;
+    const nlohmann::json j = nlohmann::json::parse(slurp(report));
+    EXPECT_EQ(j["channels"], channels) << flags;
+    EXPECT_GT(j["voxels_set"].get<uint64_t>(), 100u) << flags;
+    EXPECT_EQ(j["triangles"], 12) << flags;
+    for (const char* key : {"kernels", "total", "wall", "process"})
+      EXPECT_GT(j["ms"][key].get<double>(), 0.0) << flags << " ms." << key;
+    EXPECT_FALSE(j["ms"]["stages"].empty()) << flags;
+    if (std::string(channels).find("inside") != std::string::npos) {
+      EXPECT_GT(j["solid"]["inside_voxels"].get<uint64_t>(), 1000u) << flags;
+    } else {
+      EXPECT_FALSE(j.contains("solid")) << flags;
+    }
+  }
+}
+
+TEST(Cli, BinvoxFromResolutionIsCubic) {
+  const fs::path mesh = write_file("tetra-binvox.obj", kTetra);
+  const fs::path out = scratch() / "tetra.binvox";
+  const Result r = run("voxelize " + mesh.string() + " --res 24 -q -o " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(slurp(out).find("dim 24 24 24\n"), std::string::npos);
+  expect_one_line_error(run("voxelize " + mesh.string() + " --dims 24,20,24 -q -o " + out.string()), "cubic");
+}
+
 TEST(Cli, InsideChannelNeedsSolid) {
   const fs::path mesh = write_file("tetra8.obj", kTetra);
   expect_one_line_error(run("voxelize " + mesh.string() + " --channels occ,inside"), "--solid");

@@ -7,9 +7,9 @@
 #include <numbers>
 #include <utility>
 
-#include "core/mesh_topology.h"
 #include "core/error.h"
 #include "core/generators.h"
+#include "core/mesh_topology.h"
 #include "core/subdivide.h"
 
 namespace voxr {

@@ -65,6 +65,11 @@ double Profiler::total_ms(const std::string& name) const {
   return it == times_.end() ? 0.0 : it->second.total_ms;
 }
 
+size_t Profiler::window(const std::string& name) const {
+  const auto it = times_.find(name);
+  return it == times_.end() ? 0 : it->second.recent.size();
+}
+
 double Profiler::sum_ms() const {
   double sum = 0.0;
   for (const auto& [name, series] : times_) sum += series.total_ms;

@@ -37,6 +37,7 @@ class Profiler {
   };
   Split since(const std::map<std::string, Stat>& before) const;
   double total_ms(const std::string& name) const;  // 0 when never recorded
+  size_t window(const std::string& name) const;    // times kept for the median (at most kWindow)
   double sum_ms() const;                           // every kernel and transfer
   // Aligned text table, one row per name, sorted by total time.
   std::string table() const;

@@ -16,11 +16,10 @@ const ChannelInfo* find_channel_array(std::string_view array_name) {
   return nullptr;
 }
 
-Defines channel_defines(uint32_t bits) {
+Defines channel_defines() {
   Defines defines;
   for (const ChannelInfo& info : kChannelTable)
     defines.push_back({info.define, std::to_string(uint32_t(info.channel))});
-  defines.push_back({"VOX_CHANNELS", std::to_string(bits)});
   return defines;
 }
 

@@ -1,5 +1,5 @@
 // The one definition of every voxel channel: its name (as --channels spells it), the array name in .vti and
-// .nrrd files (what voxr-view lists), the bit in a ChannelSet and in the kernels' VOX_CHANNELS mask, the
+// .nrrd files (what voxr-view lists), the bit in a ChannelSet and in the kernels' channel masks, the
 // element type and component count of the values a file holds, where it lives on the device (dense bits,
 // or sparse: one entry per set voxel, indexed by the voxel's rank among the set voxels) and its unit.
 // Host enum, kernel defines (channel_defines), writer array names and the viewer all read this table.
@@ -61,8 +61,8 @@ inline const char* channel_name(Channel c) {
 // The channel whose array_name is `array_name`, or nullptr.
 const ChannelInfo* find_channel_array(std::string_view array_name);
 
-// The kernel defines of the channel bits (VOX_CH_OCC=1, VOX_CH_COUNT=2, ...) plus VOX_CHANNELS = `bits`.
-Defines channel_defines(uint32_t bits);
+// The kernel defines of the channel bits (VOX_CH_OCC=1, VOX_CH_COUNT=2, ...).
+Defines channel_defines();
 
 // A set of channels; occ is always present.
 struct ChannelSet {

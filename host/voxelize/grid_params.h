@@ -9,8 +9,9 @@
 
 namespace voxr {
 
-// `margin`: conservative widening of voxel boxes (snap_margin), 0 for the centre rule.
+// `margin`: conservative widening of voxel boxes (snap_margin), 0 for the centre rule; `channels`: the
+// ChannelSet bits an attribute pass accumulates.
 VoxGridParams make_grid_params(const GridSpec& grid, uint32_t triangle_count, uint32_t margin,
-                               uint32_t rows_per_copy = 4);
+                               uint32_t rows_per_copy = 4, uint32_t channels = 0);
 
 }  // namespace voxr

@@ -16,12 +16,12 @@ glm::dvec3 grid_coords_exact(const GridSpec& grid, const glm::vec4& p) {
           glm::dot(glm::dvec3(grid.axes[2]), d) / h};
 }
 
-bool overlap_exact(const glm::dvec3 (&v)[3], int64_t i, int64_t j, int64_t k) {
+bool overlap_exact(const glm::dvec3 (&v)[3], int64_t i, int64_t j, int64_t k, double widen) {
   const glm::dvec3 c(double(i) + 0.5, double(j) + 0.5, double(k) + 0.5);
   const glm::dvec3 p[3] = {v[0] - c, v[1] - c, v[2] - c};
   auto separated = [&](const glm::dvec3& axis) {
     const double a = glm::dot(axis, p[0]), b = glm::dot(axis, p[1]), d = glm::dot(axis, p[2]);
-    const double r = 0.5 * (std::abs(axis.x) + std::abs(axis.y) + std::abs(axis.z));
+    const double r = (0.5 + widen) * (std::abs(axis.x) + std::abs(axis.y) + std::abs(axis.z));
     return std::min({a, b, d}) > r || std::max({a, b, d}) < -r;
   };
   for (int a = 0; a < 3; ++a) {
@@ -38,7 +38,7 @@ bool overlap_exact(const glm::dvec3 (&v)[3], int64_t i, int64_t j, int64_t k) {
   return true;
 }
 
-VoxelGrid reference_overlap(const TriangleSoup& soup, const GridSpec& grid) {
+VoxelGrid reference_overlap(const TriangleSoup& soup, const GridSpec& grid, double widen) {
   VoxelGrid out;
   out.spec = grid;
   out.occ.assign((grid.voxel_count() + 31) / 32, 0u);
@@ -54,16 +54,16 @@ VoxelGrid reference_overlap(const TriangleSoup& soup, const GridSpec& grid) {
       bool empty = false;
       for (int a = 0; a < 3; ++a) {
         const double lo = std::min({v[0][a], v[1][a], v[2][a]}), hi = std::max({v[0][a], v[1][a], v[2][a]});
-        // Closed boxes [k, k+1] meeting [lo, hi]: ceil(lo) - 1 <= k <= floor(hi).
-        first[a] = int64_t(std::clamp(std::ceil(lo) - 1.0, 0.0, 1e15));
-        last[a] = int64_t(std::clamp(std::floor(hi), -1.0, double(grid.dims[a]) - 1.0));
+        // Closed boxes [k - w, k + 1 + w] meeting [lo, hi]: ceil(lo - w) - 1 <= k <= floor(hi + w).
+        first[a] = int64_t(std::clamp(std::ceil(lo - widen) - 1.0, 0.0, 1e15));
+        last[a] = int64_t(std::clamp(std::floor(hi + widen), -1.0, double(grid.dims[a]) - 1.0));
         empty |= first[a] > last[a];
       }
       if (empty) continue;
       for (int64_t k = first[2]; k <= last[2]; ++k)
         for (int64_t j = first[1]; j <= last[1]; ++j)
           for (int64_t i = first[0]; i <= last[0]; ++i) {
-            if (!overlap_exact(v, i, j, k)) continue;
+            if (!overlap_exact(v, i, j, k, widen)) continue;
             const uint64_t linear = grid.linear_index(uint32_t(i), uint32_t(j), uint32_t(k));
             std::atomic_ref<uint32_t>(out.occ[linear >> 5])
                 .fetch_or(1u << (linear & 31), std::memory_order_relaxed);

@@ -13,10 +13,13 @@
 
 namespace voxr {
 
-VoxelGrid reference_overlap(const TriangleSoup& soup, const GridSpec& grid);
+// `widen` (voxels, >= 0) grows every box by that much on each side: with twice the snap bound it gives a
+// set that must contain the conservative kernels' set (their extra voxels lie within the bound).
+VoxelGrid reference_overlap(const TriangleSoup& soup, const GridSpec& grid, double widen = 0.0);
 
-// Whether the closed unit box of voxel (i, j, k) meets the closed triangle with grid-unit vertices v.
-bool overlap_exact(const glm::dvec3 (&v)[3], int64_t i, int64_t j, int64_t k);
+// Whether the closed box of voxel (i, j, k), grown by `widen` voxels on each side, meets the closed triangle
+// with grid-unit vertices v.
+bool overlap_exact(const glm::dvec3 (&v)[3], int64_t i, int64_t j, int64_t k, double widen = 0.0);
 
 // Grid-unit coordinates of a world point in double precision (the exact transform of GridSpec).
 glm::dvec3 grid_coords_exact(const GridSpec& grid, const glm::vec4& p);

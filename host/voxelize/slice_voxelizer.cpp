@@ -12,7 +12,7 @@ constexpr size_t kGroup = 256;
 
 Defines base_defines(const VoxelizeOptions& options) {
   Defines d = {{"VOXR_MODE", std::to_string(int(options.mode))}, {"WG_SIZE", std::to_string(kGroup)}};
-  const Defines channels = channel_defines(options.channels.bits);
+  const Defines channels = channel_defines();
   d.insert(d.end(), channels.begin(), channels.end());
   return d;
 }
@@ -57,6 +57,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
   const uint64_t tris = mesh.triangle_count();
   const uint64_t words = out.words();
   const Defines base = base_defines(options);
+  const uint32_t channels = options.channels.bits;
   uint64_t scratch_bytes = 0;
   auto scratch = [&](const std::string& what, uint64_t bytes) {
     scratch_bytes += bytes;
@@ -83,7 +84,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     listed = large;
     stats.direct_triangles = tris - large;
   }
-  const VoxGridParams params = make_grid_params(grid, uint32_t(listed), margin, options.rows_per_copy);
+  const VoxGridParams params = make_grid_params(grid, uint32_t(listed), margin, options.rows_per_copy, channels);
 
   // Setup of the listed triangles: snapped records, and copy counts and offsets for the slice path.
   cl::Buffer snapped = scratch("snapped triangles", listed * sizeof(VoxSnappedTriangle));
@@ -167,7 +168,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     const cl::Buffer& ranked = out.ranked.buffer;
     if (hybrid && tris > 0) {
       cl::Kernel direct = cl_.kernel("vox_direct.cl", "vox_direct", with(base, "VOX_PASS", "1"));
-      cl_.launch("attributes", direct, tris, kGroup, make_grid_params(grid, uint32_t(tris), margin),
+      cl_.launch("attributes", direct, tris, kGroup, make_grid_params(grid, uint32_t(tris), margin, 1, channels),
                  mesh.positions(), mesh.triangles(), list, dummy, occ, ranked, acc, material);
     }
     raster_listed("attributes", 1, ranked, acc, material);
@@ -179,7 +180,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
       cl::Buffer nsum = normals ? out.normal_sum.ensure(cl_, set * 12, "the normal sums") : dummy;
       cl::Buffer normal = normals ? out.normal.ensure(cl_, set * 12, "the normal channel") : dummy;
       cl::Kernel finalize = cl_.kernel("vox_finalize.cl", "vox_finalize", base);
-      cl_.launch("finalize", finalize, set, kGroup, acc, count, nsum, normal, cl_uint(set));
+      cl_.launch("finalize", finalize, set, kGroup, acc, count, nsum, normal, cl_uint(set), cl_uint(channels));
     }
   }
 
