@@ -20,11 +20,14 @@
 #error "grid_view.h needs the channel defines of host/grid/channel_table.h (channel_defines)"
 #endif
 
-#define VOXR_GRID_VIEW_PARAMS                                                                           \
-  VoxGridView gv_params, __global const uint *gv_occ, __global const ulong *gv_ranked,                 \
-      __global const uint *gv_count, __global const float *gv_normal, __global const uint *gv_material, \
-      __global const uint *gv_inside
-#define VOXR_GRID_VIEW() gv_make(&gv_params, gv_occ, gv_ranked, gv_count, gv_normal, gv_material, gv_inside)
+/* The buffer parameters are named gv_buf_*: named like the accessors (gv_count, gv_normal, ...) they would
+ * hide those functions inside the kernel that declares them. */
+#define VOXR_GRID_VIEW_PARAMS                                                                            \
+  VoxGridView gv_params, __global const uint *gv_buf_occ, __global const ulong *gv_buf_ranked,          \
+      __global const uint *gv_buf_count, __global const float *gv_buf_normal,                           \
+      __global const uint *gv_buf_material, __global const uint *gv_buf_inside
+#define VOXR_GRID_VIEW() \
+  gv_make(&gv_params, gv_buf_occ, gv_buf_ranked, gv_buf_count, gv_buf_normal, gv_buf_material, gv_buf_inside)
 
 typedef struct GridView {
   __global const uint* occ;
