@@ -215,7 +215,8 @@ struct Walk {
   bool left = false;  // ended by leaving the grid (not at the step limit)
 };
 
-// Up to dims.x + dims.y + dims.z voxels: more than any straight walk through the grid visits.
+// Every ray's walk through `grid` (grid_view_march), capped at dims.x + dims.y + dims.z voxels: more than
+// a straight walk through the grid can visit, so a walk that reaches the cap has run away.
 std::vector<Walk> march(DeviceVoxelGrid& grid, const std::vector<Ray>& rays) {
   ClRuntime& cl = test::runtime();
   const size_t n = rays.size();
