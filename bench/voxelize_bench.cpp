@@ -6,10 +6,10 @@
 #include <benchmark/benchmark.h>
 
 #include <map>
-#include <memory>
 
 #include "bench/bench_meshes.h"
 #include "bench/voxelize_cases.h"
+#include "bench_runtime.h"
 #include "cl/cl_runtime.h"
 #include "cl/scan.h"
 #include "core/grid_spec.h"
@@ -17,11 +17,6 @@
 
 namespace voxr {
 namespace {
-
-ClRuntime& runtime() {
-  static std::unique_ptr<ClRuntime> rt = std::make_unique<ClRuntime>("");
-  return *rt;
-}
 
 const TriangleSoup& mesh(const std::string& name) {
   static std::map<std::string, BenchMesh> cache;
@@ -31,7 +26,7 @@ const TriangleSoup& mesh(const std::string& name) {
 }
 
 void voxelize(benchmark::State& state, const std::string& name, const std::string& case_name) {
-  ClRuntime& cl = runtime();
+  ClRuntime& cl = bench_runtime();
   const TriangleSoup* soup = nullptr;
   try {
     soup = &mesh(name);
@@ -83,7 +78,7 @@ void BM_VoxelizeSolidParity(benchmark::State& state, const std::string& name) {
 
 // The scan kernel alone: n uint counts -> ulong offsets.
 void BM_Scan(benchmark::State& state) {
-  ClRuntime& cl = runtime();
+  ClRuntime& cl = bench_runtime();
   const uint64_t n = uint64_t(state.range(0));
   std::vector<cl_uint> host(n, 3);
   cl::Buffer in = cl.buffer(n * 4, "scan input");

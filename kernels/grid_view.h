@@ -20,11 +20,14 @@
 #error "grid_view.h needs the channel defines of host/grid/channel_table.h (channel_defines)"
 #endif
 
-#define VOXR_GRID_VIEW_PARAMS                                                                           \
-  VoxGridView gv_params, __global const uint *gv_occ, __global const ulong *gv_ranked,                 \
-      __global const uint *gv_count, __global const float *gv_normal, __global const uint *gv_material, \
-      __global const uint *gv_inside
-#define VOXR_GRID_VIEW() gv_make(&gv_params, gv_occ, gv_ranked, gv_count, gv_normal, gv_material, gv_inside)
+/* The buffer parameters are named gv_buf_*: named like the accessors (gv_count, gv_normal, ...) they would
+ * hide those functions inside the kernel that declares them. */
+#define VOXR_GRID_VIEW_PARAMS                                                                            \
+  VoxGridView gv_params, __global const uint *gv_buf_occ, __global const ulong *gv_buf_ranked,          \
+      __global const uint *gv_buf_count, __global const float *gv_buf_normal,                           \
+      __global const uint *gv_buf_material, __global const uint *gv_buf_inside
+#define VOXR_GRID_VIEW() \
+  gv_make(&gv_params, gv_buf_occ, gv_buf_ranked, gv_buf_count, gv_buf_normal, gv_buf_material, gv_buf_inside)
 
 typedef struct GridView {
   __global const uint* occ;
@@ -111,16 +114,33 @@ typedef struct GvRay {
   float t_exit;         /* parameter where the ray leaves the grid */
 } GvRay;
 
+/* [*t0, *t1]: where o + t d lies in the slab [0, hi] of one axis (inv = 1 / d). A ray parallel to the axis
+ * (d = +-0) lies in it for every t when 0 <= o < hi (cells are half-open, as floor() assigns voxels) and
+ * never otherwise. The products with inv = +-inf cannot say so: an origin on a face gives 0 * inf = NaN and
+ * fmin(NaN, inf) = inf, so a ray lying in the grid's x = 0 face missed the grid, and a zero direction from
+ * outside met it at t = inf. */
+inline void gv_slab(float o, float d, float inv, float hi, float* t0, float* t1) {
+  if (d == 0.0f) {
+    const int in = o >= 0.0f && o < hi;
+    *t0 = in ? -INFINITY : INFINITY;
+    *t1 = in ? INFINITY : -INFINITY;
+    return;
+  }
+  const float a = (0.0f - o) * inv, b = (hi - o) * inv;
+  *t0 = fmin(a, b);
+  *t1 = fmax(a, b);
+}
+
 /* Starts the traversal of origin + t dir, t >= 0 (grid units), at the first voxel of the grid the ray
  * meets. Returns 0 when it misses the grid. */
 inline int gv_ray_begin(GvRay* r, const GridView* g, float3 origin, float3 dir) {
-  const float3 lo = (float3)(0.0f), hi = (float3)((float)g->dims_x, (float)g->dims_y, (float)g->dims_z);
   const float3 inv = (float3)(1.0f) / dir; /* +-inf on axes the ray is parallel to */
-  const float3 t0 = (lo - origin) * inv, t1 = (hi - origin) * inv;
-  const float3 tmin = fmin(t0, t1), tmax = fmax(t0, t1);
-  /* Parallel axes give NaN when the origin lies on a face; fmax/fmin then ignore them. */
-  const float t_enter = fmax(fmax(fmax(tmin.x, tmin.y), tmin.z), 0.0f);
-  const float t_exit = fmin(fmin(tmax.x, tmax.y), tmax.z);
+  float t0x, t1x, t0y, t1y, t0z, t1z;
+  gv_slab(origin.x, dir.x, inv.x, (float)g->dims_x, &t0x, &t1x);
+  gv_slab(origin.y, dir.y, inv.y, (float)g->dims_y, &t0y, &t1y);
+  gv_slab(origin.z, dir.z, inv.z, (float)g->dims_z, &t0z, &t1z);
+  const float t_enter = fmax(fmax(fmax(t0x, t0y), t0z), 0.0f);
+  const float t_exit = fmin(fmin(t1x, t1y), t1z);
   if (!(t_enter <= t_exit)) return 0;
   const float3 p = origin + t_enter * dir;
   r->i = clamp((int)floor(p.x), 0, (int)g->dims_x - 1);
