@@ -97,7 +97,7 @@ NormalLayouts build() {
   options.channels = ChannelSet::parse("count,normal");
   const DeviceMesh mesh = upload_mesh(cl, soup, spec, SplitCull::kGrid);
   Voxelizer(cl).run(mesh, spec, options, b.grid);
-  b.defines = channel_defines(b.grid.channels.bits);
+  b.defines = channel_defines();
   b.defines.push_back({"WG_SIZE", std::to_string(kGroup)});
 
   const uint64_t voxels = spec.voxel_count(), words = b.grid.words();

@@ -38,6 +38,7 @@ typedef struct GridView {
   __global const uint* inside;
   uint dims_x, dims_y, dims_z;
   uint channels;
+  uint has_rank_index;
 } GridView;
 
 inline GridView gv_make(const VoxGridView* p, __global const uint* occ, __global const ulong* ranked,
@@ -54,6 +55,7 @@ inline GridView gv_make(const VoxGridView* p, __global const uint* occ, __global
   g.dims_y = p->dims[1];
   g.dims_z = p->dims[2];
   g.channels = p->channels;
+  g.has_rank_index = p->has_rank_index;
   return g;
 }
 
@@ -77,8 +79,14 @@ inline int gv_inside(const GridView* g, ulong linear) {
   return gv_has(g, VOX_CH_INSIDE) ? (int)((g->inside[linear >> 5] >> (uint)(linear & 31)) & 1u) : 0;
 }
 
-/* The rank of an occupied voxel among the set voxels: its index into the sparse channels. Needs the rank
- * index, which the host builds whenever a sparse channel exists (or on request). */
+/* Whether gv_rank may be called: the host builds the rank index whenever a sparse channel exists, or on
+ * request (build_rank_index). */
+inline int gv_has_rank(const GridView* g) {
+  return g->has_rank_index != 0;
+}
+
+/* The rank of an occupied voxel among the set voxels: its index into the sparse channels (gv_has_rank must
+ * hold). */
 inline uint gv_rank(const GridView* g, ulong linear) {
   const ulong w = g->ranked[linear >> 5];
   return VOXR_RANKED_RANK(w) + popcount(VOXR_RANKED_BITS(w) & ((1u << (uint)(linear & 31)) - 1u));

@@ -3,7 +3,7 @@
  *
  * grid_view_fetch: for each query voxel (query[q].xyz = i, j, k; outside the grid gives all zeros):
  *   flags[q]     bit 0 occupied, bit 1 inside
- *   rank[q]      gv_rank, or ~0 when the voxel is not occupied or has_rank is 0 (no rank index)
+ *   rank[q]      gv_rank, or ~0 when the voxel is not occupied or the grid has no rank index
  *   count[q], material[q], normal[3q .. 3q+2]   the sparse channels at that rank (0 when not occupied)
  *   shape: one work item per query, n queries.
  *
@@ -23,7 +23,7 @@
 #include "grid_view.h"
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void grid_view_fetch(
-    VOXR_GRID_VIEW_PARAMS, __global const int4* query, uint n, uint has_rank, __global uint* flags,
+    VOXR_GRID_VIEW_PARAMS, __global const int4* query, uint n, __global uint* flags,
     __global uint* rank, __global uint* count, __global uint* material, __global float* normal) {
   const uint q = get_global_id(0);
   if (q >= n) return;
@@ -38,8 +38,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void grid_view_fet
     if (occ) {
       /* Without a rank index gv_rank must not be called; the channel accessors then see rank 0 and, the
        * sparse channels being absent, return 0 without reading. */
-      const uint at = has_rank ? gv_rank(&g, linear) : 0u;
-      if (has_rank) r = at;
+      const uint at = gv_has_rank(&g) ? gv_rank(&g, linear) : 0u;
+      if (gv_has_rank(&g)) r = at;
       c = gv_count(&g, at);
       m = gv_material(&g, at);
       nrm = gv_normal(&g, at);

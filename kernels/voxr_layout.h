@@ -103,7 +103,8 @@ typedef struct VoxGridView {
   uint dims[4];            /* x, y, z, unused */
   uint channels;           /* ChannelSet bits (host/grid/channel_table.h) */
   uint voxels_set;         /* entries of each sparse channel */
-  uint pad[2];
+  uint has_rank_index;     /* 1 when the rank index describes the occupancy (grid_view.h gv_rank) */
+  uint pad;
 } VoxGridView;
 
 /* Every size and offset the host and the device must agree on, in one list that both expand: SIZE(T) for a
@@ -121,6 +122,6 @@ typedef struct VoxGridView {
   SIZE(VoxSolidLayout) OFFSET(VoxSolidLayout, dims) OFFSET(VoxSolidLayout, words_x)                     \
   OFFSET(VoxSolidLayout, slice_words)                                                                   \
   SIZE(VoxGridView) OFFSET(VoxGridView, world_to_grid) OFFSET(VoxGridView, dims)                        \
-  OFFSET(VoxGridView, channels) OFFSET(VoxGridView, voxels_set)
+  OFFSET(VoxGridView, channels) OFFSET(VoxGridView, voxels_set) OFFSET(VoxGridView, has_rank_index)
 
 #endif

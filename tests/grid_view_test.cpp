@@ -60,8 +60,8 @@ void voxelize(const TriangleSoup& soup, const GridSpec& grid, const VoxelizeOpti
   Voxelizer(cl).run(mesh, grid, o, out);
 }
 
-Defines probe_defines(const DeviceVoxelGrid& grid) {
-  Defines d = channel_defines(grid.channels.bits);
+Defines probe_defines() {
+  Defines d = channel_defines();
   d.push_back({"WG_SIZE", std::to_string(kGroup)});
   return d;
 }
@@ -82,9 +82,9 @@ Fetched fetch(DeviceVoxelGrid& grid, const std::vector<glm::ivec4>& queries) {
   cl::Buffer flags = cl.buffer(n * 4, "probe flags"), rank = cl.buffer(n * 4, "probe rank"),
              count = cl.buffer(n * 4, "probe count"), material = cl.buffer(n * 4, "probe material"),
              normal = cl.buffer(n * 12, "probe normal");
-  cl::Kernel kernel = cl.kernel("grid_view_probe.cl", "grid_view_fetch", probe_defines(grid));
-  cl.launch("grid_view_fetch", kernel, n, kGroup, grid.view_args(cl), query, cl_uint(n),
-            cl_uint(grid.has_rank_index), flags, rank, count, material, normal);
+  cl::Kernel kernel = cl.kernel("grid_view_probe.cl", "grid_view_fetch", probe_defines());
+  cl.launch("grid_view_fetch", kernel, n, kGroup, grid.view_args(cl), query, cl_uint(n), flags, rank, count,
+            material, normal);
   Fetched f;
   f.flags.resize(n);
   f.rank.resize(n);
@@ -232,7 +232,7 @@ std::vector<Walk> march(DeviceVoxelGrid& grid, const std::vector<Ray>& rays) {
   const size_t slots = n * max_voxels;
   cl::Buffer voxels = cl.buffer(slots * 16, "probe voxels"), t = cl.buffer(slots * 4, "probe t"),
              occupied = cl.buffer(slots * 4, "probe occupied"), result = cl.buffer(n * 8, "probe result");
-  cl::Kernel kernel = cl.kernel("grid_view_probe.cl", "grid_view_march", probe_defines(grid));
+  cl::Kernel kernel = cl.kernel("grid_view_probe.cl", "grid_view_march", probe_defines());
   cl.launch("grid_view_march", kernel, n, kGroup, grid.view_args(cl), in, cl_uint(n), cl_uint(max_voxels),
             voxels, t, occupied, result);
   std::vector<glm::ivec4> all_voxels(slots);

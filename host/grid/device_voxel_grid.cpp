@@ -29,6 +29,7 @@ VoxGridView DeviceVoxelGrid::view() const {
   for (int a = 0; a < 3; ++a) v.dims[a] = spec.dims[a];
   v.channels = channels.bits;
   v.voxels_set = uint32_t(voxels_set);
+  v.has_rank_index = has_rank_index ? 1u : 0u;
   return v;
 }
 
