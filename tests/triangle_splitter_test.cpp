@@ -96,6 +96,11 @@ TEST(TriangleSplitter, NothingToSplitAgreesWithThePerTriangleRule) {
   expect_rule(unused, grid, 0, "a far vertex no triangle uses");
   unused.positions.back() = glm::vec4(std::nanf(""), 0.0f, 0.0f, 1.0f);
   expect_rule(unused, grid, 0, "a NaN vertex no triangle uses");
+  // A soup not validated yet: a triangle with only NaN corners counts as below the grid for kColumns.
+  unused.positions.back().x = 1.0f;
+  unused.append(triangle(glm::vec3(std::nanf("")), glm::vec3(std::nanf("")), glm::vec3(std::nanf(""))));
+  expect_rule(unused, grid, 0, "a triangle with NaN corners");
+  EXPECT_EQ(triangles_needing_work(unused, grid, SplitCull::kColumns), 1u);
 }
 
 }  // namespace
