@@ -379,6 +379,59 @@ TEST(MeshLoader, OffErrorsNameTheLine) {
             "no error");
 }
 
+// Files of a megabyte and more are read by two threads (vertices, faces): the same soup, and the error of the
+// earliest line when both halves have one.
+TEST(MeshLoader, ReadsLargeOffFilesLikeSmallOnes) {
+  test::TempDir dir;
+  const uint32_t n = 120;  // (n + 1)^2 vertices, 2 n^2 triangles: about 1.3 MB below
+  std::vector<std::string> lines = {"OFF", "# a sheet", fmt::format("{} {} 0", (n + 1) * (n + 1), n * n)};
+  TriangleSoup expected;
+  for (uint32_t j = 0; j <= n; ++j)
+    for (uint32_t i = 0; i <= n; ++i) {
+      const glm::vec4 p(float(i) * 0.1f, float(j) * 0.3f, float(i * j) * 1e-3f, 1.0f);
+      lines.push_back(fmt::format("{} {} {} 0.25 0.5 0.75 1", p.x, p.y, p.z));
+      if (i == 7) lines.push_back("# between vertices");
+      expected.positions.push_back(p);
+    }
+  const size_t first_face = lines.size();  // index into `lines`: line first_face + 1 of the file
+  for (uint32_t j = 0; j < n; ++j)
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+      lines.push_back(fmt::format("4 {} {} {} {} 255 255 255 255\r", a, b, c, d));
+      if (i == 5) lines.push_back("");
+      expected.triangles.push_back({a, b, c, 0});
+      expected.triangles.push_back({a, c, d, 0});
+    }
+  lines.push_back("1 2 3 # tail");
+  auto join = [](const std::vector<std::string>& l) {
+    std::string s;
+    for (const std::string& line : l) s += line + "\n";
+    return s;
+  };
+  ASSERT_GT(join(lines).size(), size_t(1) << 20);
+  const TriangleSoup soup = load_mesh(dir.write("large.off", join(lines)));
+  EXPECT_EQ(soup.positions, expected.positions);
+  EXPECT_EQ(soup.triangles, expected.triangles);
+
+  std::vector<std::string> bad = lines;
+  bad[first_face + 1000] = "4 1 2 3 x";
+  expect_error(dir.write("face.off", join(bad)),
+               fmt::format("line {}: 'x' is not a finite number", first_face + 1001));
+  bad[100] = "1 2";
+  expect_error(dir.write("both.off", join(bad)), "line 101: vertex 96 needs three coordinates");
+  bad = lines;
+  bad.back() = "1 2 three";
+  expect_error(dir.write("tail.off", join(bad)),
+               fmt::format("line {}: 'three' is not a finite number", lines.size()));
+  bad.back() = "";
+  bad[first_face + 3] = "4 1 2 3 99999999";
+  expect_error(dir.write("index.off", join(bad)),
+               fmt::format("line {}: face 3 uses vertex '99999999' but the file has", first_face + 4));
+  bad = lines;
+  bad.resize(lines.size() - 10);
+  expect_error(dir.write("short.off", join(bad)), "faces but ends after");
+}
+
 // A named pipe cannot be mapped: it is read instead.
 TEST(MeshLoader, ReadsOffFromAPipe) {
   test::TempDir dir;

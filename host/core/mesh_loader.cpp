@@ -4,6 +4,7 @@
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
@@ -13,11 +14,13 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <limits>
 #include <mutex>
 #include <optional>
 #include <string_view>
 #include <system_error>
+#include <thread>
 #include <vector>
 
 #include "core/error.h"
@@ -309,13 +312,18 @@ size_t parse_count(const std::string& name, size_t line, std::string_view token,
 
 // What an OFF body has promised and what has been read of it.
 struct OffBody {
-  explicit OffBody(const std::string& file) : name(file) {}
+  OffBody(const std::string& file, size_t vertex_count, size_t vertex_lines, size_t face_lines)
+      : name(file), vertices(vertex_count), wanted(vertex_lines), faces(face_lines) {
+    soup.positions.reserve(std::min(wanted, size_t(1) << 24));  // headers can lie: cap what they reserve
+    soup.triangles.reserve(std::min(faces, size_t(1) << 24));
+  }
   const std::string& name;
-  size_t vertices = 0;
-  size_t faces = 0;
+  size_t vertices;  // in the file: face indices are checked against it
+  size_t wanted;    // vertices to read here (all of them, or none when reading from the first face on)
+  size_t faces;     // faces to read here
   TriangleSoup soup;
   size_t f = 0;  // faces read
-  bool done() const { return soup.positions.size() == vertices && f == faces; }
+  bool done() const { return soup.positions.size() == wanted && f == faces; }
 };
 
 // Reads one line of an OFF body, token by token. This is the definition of what a body line may hold; the
@@ -324,7 +332,7 @@ void read_off_line(OffBody& b, std::string_view line, size_t number, std::vector
   const std::string& name = b.name;
   if (check_numbers(name, line, number, '#', tokens) == 0) return;
   TriangleSoup& soup = b.soup;
-  if (soup.positions.size() < b.vertices) {
+  if (soup.positions.size() < b.wanted) {
     if (tokens.size() < 3)
       fail("{}: line {}: vertex {} needs three coordinates", name, number, soup.positions.size());
     glm::vec4 p(0.0f, 0.0f, 0.0f, 1.0f);
@@ -436,6 +444,65 @@ const char* next_line(const char* p, const char* end) {
   return eol ? static_cast<const char*>(eol) + 1 : end;
 }
 
+// The line that starts at `p`, without its '\n'.
+std::string_view whole_line(const char* p, const char* end) {
+  const char* eol = next_line(p, end);
+  return std::string_view(p, size_t(eol - p) - (eol != p && eol[-1] == '\n'));
+}
+
+// Reads body lines from `p` until `b` has what it wants or the text ends; `number` is the number of the line
+// before `p` and moves along. Returns where reading stopped.
+const char* read_off_body(OffBody& b, const char* p, const char* end, size_t& number) {
+  std::vector<std::string_view> tokens;
+  while (p != end && !b.done()) {
+    ++number;
+    const char* q = skip_spaces(p, end);
+    if (!ends_line(q, end)) {
+      const size_t triangles = b.soup.triangles.size();
+      q = b.soup.positions.size() < b.wanted ? scan_vertex(b, q, end) : scan_face(b, q, end);
+      if (!q) {
+        b.soup.triangles.resize(triangles);
+        const std::string_view line = whole_line(p, end);
+        read_off_line(b, line, number, tokens);
+        q = line.data() + line.size();
+      }
+    }
+    p = next_line(q, end);
+  }
+  return p;
+}
+
+// After the body: the counts must have been met, and whatever follows the last face must be numbers too.
+void check_off_end(const OffBody& b, const char* p, const char* end, size_t number) {
+  if (b.soup.positions.size() < b.wanted)
+    fail("{}: the file declares {} vertices but ends after {}", b.name, b.vertices, b.soup.positions.size());
+  if (b.f < b.faces) fail("{}: the file declares {} faces but ends after {}", b.name, b.faces, b.f);
+  std::vector<std::string_view> tokens;
+  for (; p != end; p = next_line(p, end)) {
+    ++number;
+    float unused[3];
+    size_t count;
+    if (const char* q = scan_numbers(skip_spaces(p, end), end, unused, count)) {
+      p = q;
+    } else {
+      const std::string_view line = whole_line(p, end);
+      check_numbers(b.name, line, number, '#', tokens);
+      p = line.data() + line.size();
+    }
+  }
+}
+
+// Where the line after the `count`th line with tokens starts, moving `number` along; nullptr when the text
+// has fewer such lines.
+const char* skip_lines_with_tokens(const char* p, const char* end, size_t count, size_t& number) {
+  for (; count > 0 && p != end; ++number) {
+    const char* q = skip_spaces(p, end);
+    count -= !ends_line(q, end);
+    p = next_line(q, end);
+  }
+  return count == 0 ? p : nullptr;
+}
+
 // ASCII OFF is read here rather than by OpenMesh, whose OFF reader (9.0) takes neither comments nor counts
 // on the keyword line, reads uninitialised memory on malformed numbers and, reading from a stream, keeps
 // the binary flag of the previous file. The checks below parse the whole file anyway.
@@ -465,57 +532,50 @@ Expected read_off(const std::string& name, std::string_view text) {
     }
   }
   if (header.size() < 4) fail("{}: the OFF header ends before the vertex, face and edge counts", name);
-  OffBody b{name};
-  b.vertices = parse_count(name, number, header[1], "vertex");
-  b.faces = parse_count(name, number, header[2], "face");
+  const size_t vertices = parse_count(name, number, header[1], "vertex");
+  const size_t faces = parse_count(name, number, header[2], "face");
   parse_count(name, number, header[3], "edge");
-  if (b.vertices >= (size_t(1) << 31) || b.faces >= (size_t(1) << 31))
-    fail("{}: line {}: {} vertices and {} faces are more than voxr can index", name, number, b.vertices,
-         b.faces);
+  if (vertices >= (size_t(1) << 31) || faces >= (size_t(1) << 31))
+    fail("{}: line {}: {} vertices and {} faces are more than voxr can index", name, number, vertices, faces);
 
   // One vertex per line (x y z, then optional normal/colour/texture numbers), then one face per line
   // (n i1 .. in, then an optional colour). Polygons are fanned from their first vertex.
-  b.soup.positions.reserve(std::min(b.vertices, size_t(1) << 24));
-  b.soup.triangles.reserve(std::min(b.faces, size_t(1) << 24));
   const std::string_view body = lines.rest();
-  const char* p = body.data();
   const char* const end = body.data() + body.size();
-  // The line that starts at `start`, without its '\n'.
-  auto whole_line = [end](const char* start) {
-    const char* eol = next_line(start, end);
-    return std::string_view(start, size_t(eol - start) - (eol != start && eol[-1] == '\n'));
-  };
-  while (p != end && !b.done()) {
-    ++number;
-    const char* q = skip_spaces(p, end);
-    if (!ends_line(q, end)) {
-      const size_t triangles = b.soup.triangles.size();
-      q = b.soup.positions.size() < b.vertices ? scan_vertex(b, q, end) : scan_face(b, q, end);
-      if (!q) {
-        b.soup.triangles.resize(triangles);
-        const std::string_view slow = whole_line(p);
-        read_off_line(b, slow, number, tokens);
-        q = slow.data() + slow.size();
+  TriangleSoup soup;
+  // A large file is read by two threads, the vertices here and the faces (from the line after the last
+  // vertex line) on another; an error in the vertices is reported first, as it comes first in the file.
+  size_t face_number = number;
+  const char* face_start = body.size() >= (size_t(1) << 20) && vertices > 0 && faces > 0
+                               ? skip_lines_with_tokens(body.data(), end, vertices, face_number)
+                               : nullptr;
+  if (face_start) {
+    OffBody v(name, vertices, vertices, 0), f(name, vertices, 0, faces);
+    std::exception_ptr face_error;
+    std::thread face_reader([&] {
+      try {
+        const char* rest = read_off_body(f, face_start, end, face_number);
+        check_off_end(f, rest, end, face_number);
+      } catch (...) {
+        face_error = std::current_exception();
       }
+    });
+    try {
+      read_off_body(v, body.data(), face_start, number);
+      check_off_end(v, face_start, face_start, number);
+    } catch (...) {
+      face_reader.join();
+      throw;
     }
-    p = next_line(q, end);
-  }
-  TriangleSoup& soup = b.soup;
-  if (soup.positions.size() < b.vertices)
-    fail("{}: the file declares {} vertices but ends after {}", name, b.vertices, soup.positions.size());
-  if (b.f < b.faces) fail("{}: the file declares {} faces but ends after {}", name, b.faces, b.f);
-  // Whatever follows the last face must be numbers too.
-  while (p != end) {
-    ++number;
-    float unused[3];
-    size_t count;
-    const char* q = scan_numbers(skip_spaces(p, end), end, unused, count);
-    if (!q) {
-      const std::string_view rest = whole_line(p);
-      check_numbers(name, rest, number, '#', tokens);
-      q = rest.data() + rest.size();
-    }
-    p = next_line(q, end);
+    face_reader.join();
+    if (face_error) std::rethrow_exception(face_error);
+    soup.positions = std::move(v.soup.positions);
+    soup.triangles = std::move(f.soup.triangles);
+  } else {
+    OffBody b(name, vertices, vertices, faces);
+    const char* rest = read_off_body(b, body.data(), end, number);
+    check_off_end(b, rest, end, number);
+    soup = std::move(b.soup);
   }
   if (soup.triangles.empty()) fail("{}: no triangles: the file has no face with 3 or more vertices", name);
   Expected result;
@@ -762,10 +822,9 @@ TriangleSoup load_mesh(const std::filesystem::path& file) {
     expected = check_text(name, ext, data.view());
   }
 
-  if (expected.parsed) {
-    validate_soup(*expected.parsed, name);
-    return std::move(*expected.parsed);
-  }
+  // read_off has checked what validate_soup would (faces, indices below the vertex count, finite
+  // coordinates); on a large mesh the check cost more than a tenth of the load.
+  if (expected.parsed) return std::move(*expected.parsed);
 
   TriangleSoup soup;
   SoupImporter importer(soup);
