@@ -1,6 +1,7 @@
 // Mesh files through OpenMesh: a cube in every format, and every way a file can be wrong.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -10,7 +11,10 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <random>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "core/error.h"
 #include "core/mesh_loader.h"
@@ -254,6 +258,201 @@ TEST(MeshLoader, PrintsNothing) {
   const std::string out = ::testing::internal::GetCapturedStdout();
   EXPECT_EQ(err, "");
   EXPECT_EQ(out, "");
+}
+
+// Two triangles over four vertices, written with every separator, line ending and comment placement the OFF
+// reader accepts; all read as the plain file does.
+TEST(MeshLoader, ReadsOffSeparatorsLineEndingsAndComments) {
+  test::TempDir dir;
+  const std::string plain = "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0.5\n3 0 1 2\n3 1 3 2\n";
+  const TriangleSoup expected = load_mesh(dir.write("plain.off", plain));
+  ASSERT_EQ(expected.triangle_count(), 2u);
+  const std::map<std::string, std::string> variants = {
+      {"crlf", "OFF\r\n4 2 0\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n1 1 0.5\r\n3 0 1 2\r\n3 1 3 2\r\n"},
+      {"tabs", "OFF\t4\t2\t0\n\t0\t0 0\n1\v0\f0\n0\r1 0\n1 1 0.5 \t\n3\t0\t1\t2\n 3 1 3 2\t\n"},
+      {"comments",
+       "# head\nOFF # keyword\n# counts next\n4 2 0 #\n0 0 0#no space\n1 0 0\n#\n0 1 0\n"
+       "\n   \n1 1 0.5 # last vertex\n# faces\n3 0 1 2#\n\n# between faces\n3 1 3 2 # end\n# tail"},
+      {"no final newline", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0.5\n3 0 1 2\n3 1 3 2"},
+      {"crlf, no final newline",
+       "OFF\r\n4 2 0\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n1 1 0.5\r\n3 0 1 2\r\n3 1 3 2\r"},
+      {"trailing numbers", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0.5\n3 0 1 2\n3 1 3 2\n\n1 2.5 -3\n# c\n7"},
+      {"counts apart", "OFF\n4\n2\n\n0\n0 0 0\n1 0 0\n0 1 0\n1 1 0.5\n3 0 1 2\n3 1 3 2\n"},
+      {"number forms", "OFF 4 2 0\n+0 -0 0.0\n1. +0e0 0e5\n.0 1 0\n1E0 0.1e1 5e-1\n3 0 1 2\n3 1 3 2\n"},
+      // Index tokens of ten digits or more, which are still the same indices.
+      {"long indices",
+       "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0.5\n3 0000000000 01 00000000000002\n"
+       "0000000000000000003 1 3 2\n"},
+  };
+  for (const auto& [what, content] : variants) {
+    SCOPED_TRACE(what);
+    const TriangleSoup soup = load_mesh(dir.write("variant.off", content));
+    EXPECT_EQ(soup.positions, expected.positions);
+    EXPECT_EQ(soup.triangles, expected.triangles);
+  }
+}
+
+// Every coordinate reads as the float nearest to the decimal's nearest double, whatever its form, in a file
+// large enough for the fast path to carry it (with colours, polygons and comments along the way).
+TEST(MeshLoader, ReadsOffNumbersExactly) {
+  test::TempDir dir;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> value(-1000.0, 1000.0);
+  std::uniform_int_distribution<int> form(0, 5);
+  const size_t vertices = 3000, faces = 2000;
+  std::string s = fmt::format("OFF\n{} {} 0\n", vertices, faces);
+  std::vector<glm::vec4> expected;
+  for (size_t v = 0; v < vertices; ++v) {
+    glm::vec4 p(0.0f, 0.0f, 0.0f, 1.0f);
+    for (int c = 0; c < 3; ++c) {
+      const double x = value(rng) * std::pow(10.0, double(int(rng() % 20) - 10));
+      std::string token;
+      switch (form(rng)) {
+        case 0:
+          token = fmt::format("{}", x);
+          break;
+        case 1:
+          token = fmt::format("{:.9g}", x);
+          break;
+        case 2:
+          token = fmt::format("{:e}", x);
+          break;
+        case 3:
+          token = fmt::format("{:.20f}", x);
+          break;
+        case 4:
+          token = fmt::format("{:.3f}", x);
+          break;
+        default:
+          token = fmt::format("{}{:.17g}", x >= 0 ? "+" : "", x);
+          break;
+      }
+      s += token + (c < 2 ? " " : "");
+      p[c] = float(std::strtod(token.c_str(), nullptr));
+    }
+    s += v % 7 == 0 ? " 0.5 0.5 0.5 1\n" : v % 11 == 0 ? " # comment\n" : "\n";
+    expected.push_back(p);
+  }
+  std::vector<glm::uvec4> triangles;
+  for (size_t f = 0; f < faces; ++f) {
+    const uint32_t n = 3 + uint32_t(f % 3);
+    std::vector<uint32_t> ids(n);
+    for (uint32_t& id : ids) id = uint32_t(rng() % vertices);
+    s += std::to_string(n);
+    for (uint32_t id : ids) s += fmt::format(" {}", id);
+    s += f % 5 == 0 ? " 255 0 0\r\n" : "\n";
+    for (uint32_t k = 1; k + 1 < n; ++k) triangles.push_back({ids[0], ids[k], ids[k + 1], 0});
+  }
+  const TriangleSoup soup = load_mesh(dir.write("numbers.off", s));
+  ASSERT_EQ(soup.positions.size(), expected.size());
+  for (size_t v = 0; v < vertices; ++v)
+    ASSERT_EQ(std::memcmp(&soup.positions[v], &expected[v], sizeof expected[v]), 0) << "vertex " << v;
+  EXPECT_EQ(soup.triangles, triangles);
+}
+
+TEST(MeshLoader, OffErrorsNameTheLine) {
+  test::TempDir dir;
+  const std::string head = "OFF\n3 1 0\n0 0 0\n1 0 0\n";  // line 5 is the third vertex, line 6 the face
+  expect_error(dir.write("a.off", head + "0 1.5x 0\n3 0 1 2\n"), "line 5: '1.5x' is not a finite number");
+  expect_error(dir.write("b.off", head + "0 1e 0\n3 0 1 2\n"), "line 5: '1e' is not a finite number");
+  expect_error(dir.write("c.off", head + "0 1 0x1\n3 0 1 2\n"), "line 5: '0x1' is not a finite number");
+  expect_error(dir.write("d.off", head + "0 1\n3 0 1 2\n"), "line 5: vertex 2 needs three coordinates");
+  expect_error(dir.write("e.off", head + "0 1 0 nan\n3 0 1 2\n"), "line 5: 'nan' is not a finite number");
+  expect_error(dir.write("f.off", head + "0 1 0\r\n3 0 1\r\n"), "line 6: face 0 lists fewer than 3 vertices");
+  expect_error(dir.write("g.off", head + "0 1 0\n3 0 1 4294967296\n"),
+               "line 6: face 0 uses vertex '4294967296' but the file has 3 vertices");
+  expect_error(dir.write("h.off", head + "0 1 0\n3 0 1 -2\n"),
+               "line 6: face 0 uses vertex '-2' but the file has 3 vertices");
+  expect_error(dir.write("i.off", head + "0 1 0\n3 0 1 +2\n"),
+               "line 6: face 0 uses vertex '+2' but the file has 3 vertices");
+  expect_error(dir.write("j.off", head + "0 1 0\n3.0 0 1 2\n"),
+               "line 6: the face vertex count '3.0' is not a non-negative integer");
+  expect_error(dir.write("k.off", head + "0 1 0\n18446744073709551615 0 1 2\n"),
+               "line 6: face 0 lists fewer than 18446744073709551615 vertices");
+  expect_error(dir.write("l.off", head + "0 1 0\n3 0 1 2 red\n"), "line 6: 'red' is not a finite number");
+  expect_error(dir.write("m.off", head + "0 1 0\n3 0 1 2\n\n# fine\n1 2\n1 x"),
+               "line 10: 'x' is not a finite number");
+  expect_error(dir.write("n.off", head + "0 1 0\n# no face\n\n"), "declares 1 faces but ends after 0");
+  expect_error(dir.write("o.off", "OFF\r\n3 1 0\r\n0 0 0\r\n\r\n1 0 0 # c\r\n0 1 +\r\n3 0 1 2\r\n"),
+               "line 6: '+' is not a finite number");
+  EXPECT_EQ(load_error(dir.write("p.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0.5 0.5 0.5 1 1")),
+            "no error");
+}
+
+// Files of a megabyte and more are read by two threads (vertices, faces): the same soup, and the error of the
+// earliest line when both halves have one.
+TEST(MeshLoader, ReadsLargeOffFilesLikeSmallOnes) {
+  test::TempDir dir;
+  const uint32_t n = 120;  // (n + 1)^2 vertices, 2 n^2 triangles: about 1.3 MB below
+  std::vector<std::string> lines = {"OFF", "# a sheet", fmt::format("{} {} 0", (n + 1) * (n + 1), n * n)};
+  TriangleSoup expected;
+  for (uint32_t j = 0; j <= n; ++j)
+    for (uint32_t i = 0; i <= n; ++i) {
+      const glm::vec4 p(float(i) * 0.1f, float(j) * 0.3f, float(i * j) * 1e-3f, 1.0f);
+      lines.push_back(fmt::format("{} {} {} 0.25 0.5 0.75 1", p.x, p.y, p.z));
+      if (i == 7) lines.push_back("# between vertices");
+      expected.positions.push_back(p);
+    }
+  const size_t first_face = lines.size();  // index into `lines`: line first_face + 1 of the file
+  for (uint32_t j = 0; j < n; ++j)
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+      lines.push_back(fmt::format("4 {} {} {} {} 255 255 255 255\r", a, b, c, d));
+      if (i == 5) lines.push_back("");
+      expected.triangles.push_back({a, b, c, 0});
+      expected.triangles.push_back({a, c, d, 0});
+    }
+  lines.push_back("1 2 3 # tail");
+  auto join = [](const std::vector<std::string>& l) {
+    std::string s;
+    for (const std::string& line : l) s += line + "\n";
+    return s;
+  };
+  ASSERT_GT(join(lines).size(), size_t(1) << 20);
+  const TriangleSoup soup = load_mesh(dir.write("large.off", join(lines)));
+  EXPECT_EQ(soup.positions, expected.positions);
+  EXPECT_EQ(soup.triangles, expected.triangles);
+
+  std::vector<std::string> bad = lines;
+  bad[first_face + 1000] = "4 1 2 3 x";
+  expect_error(dir.write("face.off", join(bad)),
+               fmt::format("line {}: 'x' is not a finite number", first_face + 1001));
+  bad[100] = "1 2";
+  expect_error(dir.write("both.off", join(bad)), "line 101: vertex 96 needs three coordinates");
+  bad = lines;
+  bad.back() = "1 2 three";
+  expect_error(dir.write("tail.off", join(bad)),
+               fmt::format("line {}: 'three' is not a finite number", lines.size()));
+  bad.back() = "";
+  bad[first_face + 3] = "4 1 2 3 99999999";
+  expect_error(dir.write("index.off", join(bad)),
+               fmt::format("line {}: face 3 uses vertex '99999999' but the file has", first_face + 4));
+  bad = lines;
+  bad.resize(lines.size() - 10);
+  expect_error(dir.write("short.off", join(bad)), "faces but ends after");
+}
+
+// A named pipe cannot be mapped: it is read instead.
+TEST(MeshLoader, ReadsOffFromAPipe) {
+  test::TempDir dir;
+  const fs::path fifo = dir.path() / "pipe.off";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  // Blank lines between the header and the vertices: more than one read.
+  const std::string content = "OFF\n3 1 0\n" + std::string(200000, '\n') + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  std::thread writer([&] { std::ofstream(fifo, std::ios::binary) << content; });
+  TriangleSoup soup;
+  std::string error;
+  try {
+    soup = load_mesh(fifo);
+  } catch (const Error& e) {
+    error = e.what();
+    std::ifstream drain(fifo);  // lets the writer finish if the pipe was never opened
+    drain.ignore(std::numeric_limits<std::streamsize>::max());
+  }
+  writer.join();
+  EXPECT_EQ(error, "");
+  ASSERT_EQ(soup.triangle_count(), 1u);
+  EXPECT_EQ(soup.positions[1], glm::vec4(1, 0, 0, 1));
 }
 
 // Meshes fetched by scripts/fetch-meshes.sh into $VOXR_MESH_DIR (default: data/meshes in the source tree).

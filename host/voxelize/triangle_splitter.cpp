@@ -1,6 +1,8 @@
 #include "voxelize/triangle_splitter.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "voxelize/snapped_triangle.h"
 
@@ -60,12 +62,33 @@ struct Splitter {
   }
 };
 
+// True when no triangle can need work: every vertex, transformed once, lies in a box no larger than
+// kSplitExtentVoxels (a triangle's extent, computed from the same floats, is then no larger: rounding is
+// monotonic) and, for kColumns, within a voxel of the grid in depth. NaN coordinates decide nothing here.
+bool nothing_to_split(const TriangleSoup& soup, const std::array<float, 12>& m, float nz, SplitCull cull) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  bool nan = false;
+  for (const glm::vec4& p : soup.positions) {
+    const glm::vec3 g = grid_coords(m, p);
+    nan |= std::isnan(g.x) | std::isnan(g.y) | std::isnan(g.z);
+    lo = glm::min(lo, g);
+    hi = glm::max(hi, g);
+  }
+  const glm::vec3 e = hi - lo;
+  return !nan && e.x <= kSplitExtentVoxels && e.y <= kSplitExtentVoxels && e.z <= kSplitExtentVoxels &&
+         (cull != SplitCull::kColumns || (lo.z >= -1.0f && hi.z <= nz + 1.0f));
+}
+
 }  // namespace
 
 std::optional<TriangleSoup> split_oversized_triangles(const TriangleSoup& soup, const GridSpec& grid,
                                                       uint64_t* split, SplitCull cull) {
   const std::array<float, 12> m = grid.world_to_grid();
   const float nz = float(grid.dims.z);
+  if (nothing_to_split(soup, m, nz, cull)) {
+    if (split) *split = 0;
+    return std::nullopt;
+  }
   auto needs_work = [&](const glm::uvec4& t) {
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (int c = 0; c < 3; ++c) {
