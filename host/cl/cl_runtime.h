@@ -12,14 +12,13 @@
 #include <vector>
 
 #include "cl/cl_error.h"
+#include "cl/defines.h"
 #include "cl/device.h"
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
 #include "core/error.h"
 
 namespace voxr {
-
-using Defines = std::vector<std::pair<std::string, std::string>>;
 
 // One program: a kernel file and the defines it is built with.
 struct ProgramSpec {

@@ -11,12 +11,10 @@
 #include "bench/solid_table.h"
 #include "bench/table1.h"
 #include "bench/voxelize_cases.h"
-#ifdef VOXR_WITH_OPENVDB
-#include "peers/openvdb_peer.h"
-#endif
 #include "cl/cl_runtime.h"
 #include "cli/bench_voxelize.h"
 #include "cli/commands.h"
+#include "cli/openvdb_plugin.h"
 
 namespace voxr::cli {
 
@@ -25,9 +23,7 @@ namespace {
 // The core methods plus the CPU peers this build has.
 std::vector<std::string> default_table1_methods() {
   std::vector<std::string> methods = table1_methods();
-#ifdef VOXR_WITH_OPENVDB
-  methods.push_back("openvdb");
-#endif
+  if (openvdb_peer_available()) methods.push_back("openvdb");
   return methods;
 }
 
@@ -76,9 +72,12 @@ int run_bench_table1(const Table1Args& args) {
   }
   options.resolutions = args.resolutions;
   options.methods = args.methods;
-#ifdef VOXR_WITH_OPENVDB
-  options.peers["openvdb"] = openvdb_mesh_to_volume;
-#endif
+  if (std::find(options.methods.begin(), options.methods.end(), "openvdb") != options.methods.end()) {
+    std::optional<Table1Peer> peer = load_openvdb_peer();
+    if (!peer)
+      fail("method openvdb: libvoxr_openvdb_peer.so is not beside voxr (install libopenvdb-dev, rebuild)");
+    options.peers["openvdb"] = std::move(*peer);
+  }
   options.repeat = args.repeat;
   options.warmup = args.warmup;
   options.accuracy = !args.no_accuracy;

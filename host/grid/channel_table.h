@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "cl/cl_runtime.h"
+#include "cl/defines.h"
 
 namespace voxr {
 
