@@ -301,7 +301,7 @@ TEST(MeshLoader, ReadsOffNumbersExactly) {
   std::uniform_int_distribution<int> form(0, 5);
   const size_t vertices = 3000, faces = 2000;
   std::string s = fmt::format("OFF\n{} {} 0\n", vertices, faces);
-  std::vector<glm::vec4> expected;
+  HostArray<glm::vec4> expected;
   for (size_t v = 0; v < vertices; ++v) {
     glm::vec4 p(0.0f, 0.0f, 0.0f, 1.0f);
     for (int c = 0; c < 3; ++c) {
@@ -333,7 +333,7 @@ TEST(MeshLoader, ReadsOffNumbersExactly) {
     s += v % 7 == 0 ? " 0.5 0.5 0.5 1\n" : v % 11 == 0 ? " # comment\n" : "\n";
     expected.push_back(p);
   }
-  std::vector<glm::uvec4> triangles;
+  HostArray<glm::uvec4> triangles;
   for (size_t f = 0; f < faces; ++f) {
     const uint32_t n = 3 + uint32_t(f % 3);
     std::vector<uint32_t> ids(n);

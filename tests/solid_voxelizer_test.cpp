@@ -150,7 +150,8 @@ TEST(SolidVoxelizer, CompareInsideCountsMissingAndExtra) {
   const GridSpec grid = unit_grid({5, 4, 3});
   VoxelGrid g;
   g.spec = grid;
-  g.inside = bits_of(grid, {{0, 0, 0}, {1, 0, 0}, {4, 3, 2}});
+  const std::vector<uint32_t> inside = bits_of(grid, {{0, 0, 0}, {1, 0, 0}, {4, 3, 2}});
+  g.inside.assign(inside.begin(), inside.end());
   const std::vector<uint32_t> ref = bits_of(grid, {{1, 0, 0}, {2, 1, 1}, {3, 1, 1}, {4, 3, 2}});
   const SolidError e = compare_inside(g, ref);
   EXPECT_EQ(e.missing, 2u);
@@ -322,7 +323,7 @@ HoleReport measure_holes(const TriangleSoup& soup, const GridSpec& grid, const c
   for (SolidMode mode : {SolidMode::kFlood, SolidMode::kXor, SolidMode::kLate, SolidMode::kParity}) {
     ModeErrors m;
     const VoxelGrid g = solid.run(soup, grid, mode, &m.stats);
-    if (mode == SolidMode::kFlood) shell = g.occ;  // the conservative surface
+    if (mode == SolidMode::kFlood) shell.assign(g.occ.begin(), g.occ.end());  // the conservative surface
     m.all = compare_inside(g, reference);
     m.off_surface = compare_inside(g, reference, shell);
     std::printf("[ holes    ] %-17s %ux%ux%u ref %6llu | %-6s %-22s off-surface %-22s%s\n", name, grid.dims.x,

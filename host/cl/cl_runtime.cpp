@@ -137,18 +137,61 @@ void ClRuntime::enqueue(const std::string& name, cl::Kernel& kernel, size_t glob
 #endif
 }
 
-cl::Buffer ClRuntime::buffer(uint64_t bytes, const std::string& what, cl_mem_flags flags) {
-  bytes = std::max<uint64_t>(bytes, 4);
+void ClRuntime::check_allocation(uint64_t bytes, const std::string& what) const {
   if (bytes > device_.max_allocation)
     fail(
         "{} needs {:.1f} MiB but the largest buffer {} allows is {:.1f} MiB; use a smaller grid (--res) or "
         "fewer channels",
         what, double(bytes) / (1 << 20), device_.name, double(device_.max_allocation) / (1 << 20));
+}
+
+cl::Buffer ClRuntime::buffer(uint64_t bytes, const std::string& what, cl_mem_flags flags) {
+  bytes = std::max<uint64_t>(bytes, 4);
+  check_allocation(bytes, what);
   try {
     return cl::Buffer(context_, flags, bytes);
   } catch (const cl::Error& e) {
     throw Error(describe_cl_error(e, "allocating " + what));
   }
+}
+
+bool ClRuntime::can_use_in_place(const void* data) const {
+  return device_.host_memory && device_.base_alignment > 0 &&
+         reinterpret_cast<uintptr_t>(data) % device_.base_alignment == 0;
+}
+
+cl::Buffer ClRuntime::in_place_buffer(void* data, uint64_t bytes, const std::string& what) {
+  VOXR_CHECK(can_use_in_place(data) && bytes > 0);
+  try {
+    return cl::Buffer(context_, CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, bytes, data);
+  } catch (const cl::Error& e) {
+    throw Error(describe_cl_error(e, "allocating " + what));
+  }
+}
+
+void ClRuntime::sync_to_host(cl::Buffer& buffer, uint64_t bytes, const std::string& name) {
+  try {
+    void* mapped = queue_.enqueueMapBuffer(buffer, CL_TRUE, CL_MAP_READ, 0, bytes);
+    queue_.enqueueUnmapMemObject(buffer, mapped);
+    queue_.finish();
+  } catch (const cl::Error& e) {
+    throw Error(describe_cl_error(e, name));
+  }
+}
+
+bool ClRuntime::host_buffer(cl::Buffer& buffer, const void* data, uint64_t bytes, const std::string& what,
+                            const std::string& name) {
+  if (can_use_in_place(data) && bytes > 0) {
+    try {
+      buffer = cl::Buffer(context_, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, bytes, const_cast<void*>(data));
+      return true;
+    } catch (const cl::Error& e) {
+      throw Error(describe_cl_error(e, "allocating " + what));
+    }
+  }
+  buffer = this->buffer(bytes, what, CL_MEM_READ_ONLY);
+  upload(buffer, data, bytes, name);
+  return false;
 }
 
 void ClRuntime::fill_zero(cl::Buffer& buffer, uint64_t bytes, const std::string& name) {

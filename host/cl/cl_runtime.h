@@ -64,6 +64,19 @@ class ClRuntime {
   // A device buffer of `bytes` (at least 1). Throws voxr::Error naming `what` when it exceeds the
   // device's largest allocation.
   cl::Buffer buffer(uint64_t bytes, const std::string& what, cl_mem_flags flags = CL_MEM_READ_WRITE);
+  // Throws the error buffer() would throw for `bytes`, without allocating.
+  void check_allocation(uint64_t bytes, const std::string& what) const;
+  // A read-only buffer over `bytes` of host memory at `data`: on a CPU device whose alignment `data` meets,
+  // the device reads the host memory in place (no copy; `data` must then stay alive and unchanged while the
+  // buffer is used); otherwise an upload named `name`. Returns whether it is in place.
+  bool host_buffer(cl::Buffer& buffer, const void* data, uint64_t bytes, const std::string& what,
+                   const std::string& name);
+  // Whether host memory at `data` can back a buffer in place (a CPU device, aligned memory).
+  bool can_use_in_place(const void* data) const;
+  // A read-write buffer that uses `bytes` of host memory at `data` in place (can_use_in_place must hold).
+  cl::Buffer in_place_buffer(void* data, uint64_t bytes, const std::string& what);
+  // Makes the kernels' writes to an in-place buffer visible in its host memory (a map and unmap).
+  void sync_to_host(cl::Buffer& buffer, uint64_t bytes, const std::string& name);
   void fill_zero(cl::Buffer& buffer, uint64_t bytes, const std::string& name);
   void upload(cl::Buffer& buffer, const void* data, uint64_t bytes, const std::string& name);
   void download(const cl::Buffer& buffer, void* data, uint64_t bytes, const std::string& name,

@@ -80,6 +80,9 @@ std::vector<DeviceInfo> list_devices() {
       info.max_allocation = devices[d].getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
       info.correctly_rounded_sqrt =
           (devices[d].getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
+      // A CPU device works on host memory: buffers over suitably aligned host arrays need no copy.
+      info.host_memory = devices[d].getInfo<CL_DEVICE_TYPE>() == CL_DEVICE_TYPE_CPU;
+      info.base_alignment = devices[d].getInfo<CL_DEVICE_MEM_BASE_ADDR_ALIGN>() / 8;
       info.device = devices[d];
       out.push_back(std::move(info));
     }

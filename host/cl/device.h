@@ -22,6 +22,8 @@ struct DeviceInfo {
   uint64_t global_memory = 0;
   uint64_t max_allocation = 0;
   bool correctly_rounded_sqrt = false;  // CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT
+  bool host_memory = false;             // a CPU device: its buffers live in host memory
+  uint64_t base_alignment = 0;          // CL_DEVICE_MEM_BASE_ADDR_ALIGN, in bytes
   cl::Device device;
 
   std::string label() const;  // "P:D name (platform)"

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/host_array.h"
+
 namespace voxr {
 
 struct Bounds {
@@ -30,8 +32,9 @@ struct Bounds {
 };
 
 struct TriangleSoup {
-  std::vector<glm::vec4> positions;   // w = 1
-  std::vector<glm::uvec4> triangles;  // xyz: indices into positions, w: material id
+  // Page-aligned, so a CPU device reads them in place (host_array.h).
+  HostArray<glm::vec4> positions;   // w = 1
+  HostArray<glm::uvec4> triangles;  // xyz: indices into positions, w: material id
 
   size_t triangle_count() const { return triangles.size(); }
   size_t vertex_count() const { return positions.size(); }

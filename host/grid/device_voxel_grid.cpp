@@ -57,6 +57,30 @@ void DeviceVoxelGrid::reset(const GridSpec& grid, ChannelSet set) {
   has_rank_index = false;
 }
 
+void DeviceVoxelGrid::adopt_occupancy(ClRuntime& cl, uint32_t* words_data, uint64_t count) {
+  occ.release();
+  occ.buffer = cl.in_place_buffer(words_data, count * 4, "the occupancy bits");
+  occ.bytes = count * 4;
+  adopted_ = true;
+}
+
+void DeviceVoxelGrid::release_adopted() {
+  if (!adopted_) return;
+  occ.release();
+  adopted_ = false;
+}
+
+cl::Buffer& DeviceVoxelGrid::occupancy_for_writing(ClRuntime& cl) {
+  const uint64_t bytes = words() * 4;
+  if (adopted_) {
+    VOXR_CHECK_LE(bytes, occ.bytes);
+    return occ.buffer;
+  }
+  cl::Buffer& buffer = occ.ensure(cl, bytes, "the occupancy bits");
+  cl.fill_zero(buffer, bytes, "clear");
+  return buffer;
+}
+
 void build_rank_index(ClRuntime& cl, DeviceVoxelGrid& grid) {
   if (grid.has_rank_index) return;
   const uint64_t words = grid.words();
@@ -65,13 +89,19 @@ void build_rank_index(ClRuntime& cl, DeviceVoxelGrid& grid) {
   grid.has_rank_index = true;
 }
 
-VoxelGrid read_back(ClRuntime& cl, const DeviceVoxelGrid& grid) {
+VoxelGrid read_back(ClRuntime& cl, DeviceVoxelGrid& grid, BitWords* adopted_occ) {
   VoxelGrid out;
   out.spec = grid.spec;
   out.channels = grid.channels;
   const uint64_t words = grid.words();
-  out.occ.resize(words);
-  cl.download(grid.occ.buffer, out.occ.data(), words * 4, "readback occupancy");
+  if (grid.occupancy_adopted()) {
+    VOXR_CHECK(adopted_occ && adopted_occ->data() && adopted_occ->size() == words);
+    cl.sync_to_host(grid.occ.buffer, words * 4, "readback occupancy");
+    out.occ = std::move(*adopted_occ);
+  } else {
+    out.occ.resize(words);
+    cl.download(grid.occ.buffer, out.occ.data(), words * 4, "readback occupancy");
+  }
   if (grid.channels.has(Channel::kInside)) {
     out.inside.resize(words);
     cl.download(grid.inside.buffer, out.inside.data(), words * 4, "readback inside");

@@ -61,18 +61,30 @@ class DeviceVoxelGrid {
   // checks the channel bits). Throws voxr::InternalError when a sparse channel lacks the rank index.
   GridViewArgs view_args(ClRuntime& cl);
 
-  // Starts a new result on `grid` with `channels`: clears the flags and counts; buffers are kept for reuse.
+  // Starts a new result on `grid` with `channels`: clears the flags and counts; buffers are kept for reuse
+  // (an adopted occupancy array stays adopted).
   void reset(const GridSpec& grid, ChannelSet channels);
+
+  // On a CPU device: the next voxelization writes its occupancy straight into `words` (zero, words() long
+  // for the grid it runs on, aligned as ClRuntime::can_use_in_place needs, alive until release_adopted()),
+  // so there is nothing to clear and nothing to copy back.
+  void adopt_occupancy(ClRuntime& cl, uint32_t* words, uint64_t count);
+  void release_adopted();
+  bool occupancy_adopted() const { return adopted_; }
+  // The occupancy buffer, ready for a voxelizer to set bits in: cleared, or the adopted (zero) host array.
+  cl::Buffer& occupancy_for_writing(ClRuntime& cl);
 
  private:
   GrowingBuffer placeholder_;
+  bool adopted_ = false;
 };
 
 // Builds the rank index from the occupancy (scan.cl) and sets voxels_set; nothing when it is current.
 void build_rank_index(ClRuntime& cl, DeviceVoxelGrid& grid);
 
 // Every present channel copied into a host VoxelGrid. voxels_set comes from the rank index when there is
-// one, else from the occupancy read back.
-VoxelGrid read_back(ClRuntime& cl, const DeviceVoxelGrid& grid);
+// one, else from the occupancy read back. An adopted occupancy array (adopted_occ, the one given to
+// adopt_occupancy) is moved into the result instead of copied.
+VoxelGrid read_back(ClRuntime& cl, DeviceVoxelGrid& grid, BitWords* adopted_occ = nullptr);
 
 }  // namespace voxr

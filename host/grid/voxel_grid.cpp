@@ -6,7 +6,7 @@
 
 namespace voxr {
 
-void expand_bits(const std::vector<uint32_t>& bits, uint64_t begin, uint64_t end, uint8_t* out) {
+void expand_bits(std::span<const uint32_t> bits, uint64_t begin, uint64_t end, uint8_t* out) {
   for (uint64_t l = begin; l < end; ++l) *out++ = uint8_t((bits[l >> 5] >> (l & 31)) & 1u);
 }
 

@@ -4,11 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "core/grid_spec.h"
+#include "core/host_array.h"
 #include "grid/channel_table.h"
 
 namespace voxr {
@@ -21,7 +23,7 @@ VoxelGrid solid_occupancy(const VoxelGrid& grid);
 struct VoxelGrid {
   GridSpec spec;
   ChannelSet channels;
-  std::vector<uint32_t> occ;  // bit (linear % 32) of word (linear / 32)
+  BitWords occ;  // bit (linear % 32) of word (linear / 32)
   uint64_t voxels_set = 0;
 
   // Sparse attributes, voxels_set entries each when the channel was requested, else empty.
@@ -32,7 +34,7 @@ struct VoxelGrid {
 
   // Dense interior bits, laid out like occ, when channels has kInside (else empty): voxels whose centre a
   // solid mode judges inside (host/voxelize/solid_fill.h).
-  std::vector<uint32_t> inside;
+  BitWords inside;
   uint64_t inside_voxels = 0;
 
   bool occupied(uint64_t linear) const { return (occ[linear >> 5] >> (linear & 31)) & 1u; }
@@ -56,6 +58,6 @@ struct VoxelGrid {
 };
 
 // Bits [begin, end) of a dense bit array (occ or inside layout) as 0/1 bytes in out[0 .. end - begin).
-void expand_bits(const std::vector<uint32_t>& bits, uint64_t begin, uint64_t end, uint8_t* out);
+void expand_bits(std::span<const uint32_t> bits, uint64_t begin, uint64_t end, uint8_t* out);
 
 }  // namespace voxr

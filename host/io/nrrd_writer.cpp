@@ -1,6 +1,7 @@
 #include "io/nrrd_writer.h"
 
 #include <bit>
+#include <span>
 #include <memory>
 #include <string>
 
@@ -44,7 +45,7 @@ std::string nrrd_header(const GridSpec& spec, const char* type, bool vector, con
 }
 
 // Bits as uint8 0/1, a bounded chunk at a time.
-void write_dense_bits(OutputFile& file, const std::vector<uint32_t>& bits, uint64_t n) {
+void write_dense_bits(OutputFile& file, std::span<const uint32_t> bits, uint64_t n) {
   constexpr uint64_t kChunk = uint64_t(1) << 20;
   std::vector<uint8_t> buffer(size_t(std::min(n, kChunk)));
   for (uint64_t begin = 0; begin < n; begin += kChunk) {

@@ -386,32 +386,32 @@ ReferenceSolid reference_solid(const TriangleSoup& soup, const GridSpec& grid, S
   return out;
 }
 
-uint64_t count_bits(const std::vector<uint32_t>& bits) {
+uint64_t count_bits(std::span<const uint32_t> bits) {
   uint64_t n = 0;
   for (uint32_t w : bits) n += uint64_t(std::popcount(w));
   return n;
 }
 
-SolidError compare_bits(const std::vector<uint32_t>& result, const std::vector<uint32_t>& reference_bits,
-                        const std::vector<uint32_t>* shell) {
+SolidError compare_bits(std::span<const uint32_t> result, std::span<const uint32_t> reference_bits,
+                        std::span<const uint32_t> shell) {
   VOXR_CHECK_EQ(result.size(), reference_bits.size());
-  if (shell) VOXR_CHECK_EQ(shell->size(), result.size());
+  if (!shell.empty()) VOXR_CHECK_EQ(shell.size(), result.size());
   SolidError e;
   for (size_t w = 0; w < result.size(); ++w) {
-    const uint32_t counted = shell ? ~(*shell)[w] : ~0u;
+    const uint32_t counted = shell.empty() ? ~0u : ~shell[w];
     e.missing += uint64_t(std::popcount(reference_bits[w] & ~result[w] & counted));
     e.extra += uint64_t(std::popcount(result[w] & ~reference_bits[w] & counted));
   }
   return e;
 }
 
-SolidError compare_inside(const VoxelGrid& grid, const std::vector<uint32_t>& reference_bits) {
+SolidError compare_inside(const VoxelGrid& grid, std::span<const uint32_t> reference_bits) {
   return compare_bits(grid.inside, reference_bits);
 }
 
-SolidError compare_inside(const VoxelGrid& grid, const std::vector<uint32_t>& reference_bits,
-                          const std::vector<uint32_t>& shell) {
-  return compare_bits(grid.inside, reference_bits, &shell);
+SolidError compare_inside(const VoxelGrid& grid, std::span<const uint32_t> reference_bits,
+                          std::span<const uint32_t> shell) {
+  return compare_bits(grid.inside, reference_bits, shell);
 }
 
 }  // namespace voxr

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/grid_spec.h"
@@ -45,14 +46,15 @@ struct SolidError {
   uint64_t extra = 0;
   uint64_t total() const { return missing + extra; }
 };
-SolidError compare_inside(const VoxelGrid& grid, const std::vector<uint32_t>& reference_bits);
+SolidError compare_inside(const VoxelGrid& grid, std::span<const uint32_t> reference_bits);
 // Counting only voxels outside `shell` (say the conservative surface's occ): the errors that a boundary rule
 // off by part of a voxel does not explain — leaks along columns, lost interiors.
-SolidError compare_inside(const VoxelGrid& grid, const std::vector<uint32_t>& reference_bits,
-                          const std::vector<uint32_t>& shell);
-SolidError compare_bits(const std::vector<uint32_t>& result, const std::vector<uint32_t>& reference_bits,
-                        const std::vector<uint32_t>* shell = nullptr);
+SolidError compare_inside(const VoxelGrid& grid, std::span<const uint32_t> reference_bits,
+                          std::span<const uint32_t> shell);
+// `shell` empty: every voxel counts.
+SolidError compare_bits(std::span<const uint32_t> result, std::span<const uint32_t> reference_bits,
+                        std::span<const uint32_t> shell = {});
 
-uint64_t count_bits(const std::vector<uint32_t>& bits);
+uint64_t count_bits(std::span<const uint32_t> bits);
 
 }  // namespace voxr

@@ -55,7 +55,6 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
   const bool hybrid = method_ == VoxelizeMethod::kHybrid, grid_method = method_ == VoxelizeMethod::kGrid;
   const uint32_t margin = options.mode == RasterMode::kConservative ? snap_margin(grid, mesh.bounds()) : 0;
   const uint64_t tris = mesh.triangle_count();
-  const uint64_t words = out.words();
   const Defines base = base_defines(options);
   const uint32_t channels = options.channels.bits;
   uint64_t scratch_bytes = 0;
@@ -65,8 +64,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
   };
 
   progress("surface");
-  cl::Buffer& occ = out.occ.ensure(cl_, words * 4, "the occupancy bits");
-  cl_.fill_zero(occ, words * 4, "clear");
+  cl::Buffer& occ = out.occupancy_for_writing(cl_);
   cl::Buffer dummy = scratch("unused channel", 4);
 
   // Which triangles go through the copy records: the large ones the direct pass lists (hybrid), or all.
@@ -84,7 +82,8 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     listed = large;
     stats.direct_triangles = tris - large;
   }
-  const VoxGridParams params = make_grid_params(grid, uint32_t(listed), margin, options.rows_per_copy, channels);
+  const VoxGridParams params =
+      make_grid_params(grid, uint32_t(listed), margin, options.rows_per_copy, channels);
 
   // Setup of the listed triangles: snapped records, and copy counts and offsets for the slice path.
   cl::Buffer snapped = scratch("snapped triangles", listed * sizeof(VoxSnappedTriangle));
@@ -168,8 +167,9 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     const cl::Buffer& ranked = out.ranked.buffer;
     if (hybrid && tris > 0) {
       cl::Kernel direct = cl_.kernel("vox_direct.cl", "vox_direct", with(base, "VOX_PASS", "1"));
-      cl_.launch("attributes", direct, tris, kGroup, make_grid_params(grid, uint32_t(tris), margin, 1, channels),
-                 mesh.positions(), mesh.triangles(), list, dummy, occ, ranked, acc, material);
+      cl_.launch("attributes", direct, tris, kGroup,
+                 make_grid_params(grid, uint32_t(tris), margin, 1, channels), mesh.positions(),
+                 mesh.triangles(), list, dummy, occ, ranked, acc, material);
     }
     raster_listed("attributes", 1, ranked, acc, material);
 
@@ -180,7 +180,8 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
       cl::Buffer nsum = normals ? out.normal_sum.ensure(cl_, set * 12, "the normal sums") : dummy;
       cl::Buffer normal = normals ? out.normal.ensure(cl_, set * 12, "the normal channel") : dummy;
       cl::Kernel finalize = cl_.kernel("vox_finalize.cl", "vox_finalize", base);
-      cl_.launch("finalize", finalize, set, kGroup, acc, count, nsum, normal, cl_uint(set), cl_uint(channels));
+      cl_.launch("finalize", finalize, set, kGroup, acc, count, nsum, normal, cl_uint(set),
+                 cl_uint(channels));
     }
   }
 

@@ -79,7 +79,6 @@ void SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const 
   const uint64_t columns = uint64_t(grid.dims.x) * grid.dims.y;
   const uint32_t words_per_column = (grid.dims.z + 31) / 32;
   const uint64_t slicemap_words = columns * words_per_column;
-  const uint64_t occ_words = out.words();
   const Defines common = slicemap_defines(local);
   uint64_t device_bytes = 0;
   auto alloc = [&](uint64_t bytes, const std::string& what) {
@@ -134,8 +133,7 @@ void SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const 
   cl::Kernel raster = cl_.kernel("slicemap_raster.cl", "slicemap_raster", with(common, "SLICEMAP_PASS", "1"));
   raster_all("raster", raster);
 
-  cl::Buffer& occ = out.occ.ensure(cl_, occ_words * 4, "the occupancy bits");
-  cl_.fill_zero(occ, occ_words * 4, "clear");
+  cl::Buffer& occ = out.occupancy_for_writing(cl_);
   cl::Kernel voxels = cl_.kernel("slicemap_voxels.cl", "slicemap_voxels", common);
   cl_.launch("voxels", voxels, slicemap_words, kGroup, params, bits, depth_range, occ);
 

@@ -110,11 +110,22 @@ VoxelGrid Voxelizer::run(const TriangleSoup& soup, const GridSpec& grid, const V
   if (options.progress) options.progress("upload");
   const DeviceMesh mesh =
       upload_mesh(cl_, soup, grid, options.solid ? SplitCull::kColumns : SplitCull::kGrid, bounds);
+  // A CPU device sets the occupancy bits straight into the result's (zero) pages.
+  const uint64_t words = (grid.voxel_count() + 31) / 32;
+  cl_.check_allocation(words * 4, "the occupancy bits");
+  BitWords occ(words);
+  if (cl_.can_use_in_place(occ.data())) grid_.adopt_occupancy(cl_, occ.data(), occ.size());
   VoxelizeStats local;
-  run(mesh, grid, options, grid_, &local);
+  try {
+    run(mesh, grid, options, grid_, &local);
+  } catch (...) {
+    grid_.release_adopted();
+    throw;
+  }
   if (options.progress) options.progress("readback");
   const auto before = cl_.profiler().stats();
-  VoxelGrid result = read_back(cl_, grid_);
+  VoxelGrid result = read_back(cl_, grid_, &occ);
+  grid_.release_adopted();
   local.voxels_set = result.voxels_set;
   local.upload_ms = mesh.upload_ms();
   local.readback_ms += cl_.profiler().since(before).readback_ms;
