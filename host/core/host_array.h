@@ -14,73 +14,46 @@ namespace voxr {
 
 inline constexpr size_t kHostArrayAlignment = 4096;
 
-template <typename T>
-struct PageAlignedAllocator {
+// Blocks of at least `bytes`, page-aligned and zero: big ones straight from the kernel (mmap, the pages
+// populated in one go, cheaper than faulting them in one by one later), small ones zeroed by hand.
+void* allocate_zero_pages(size_t bytes);
+void free_zero_pages(void* p, size_t bytes);
+
+// The allocator of HostArray and BitWords. With kZeroInit, elements constructed without arguments are left
+// as the (zero) memory is, so `BitWords words(n)` needs no clearing pass.
+template <typename T, bool kZeroInit>
+struct PageAllocator {
   using value_type = T;
-  PageAlignedAllocator() = default;
   template <typename U>
-  PageAlignedAllocator(const PageAlignedAllocator<U>&) {}
-  T* allocate(size_t n) {
-    return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(kHostArrayAlignment)));
+  struct rebind {
+    using other = PageAllocator<U, kZeroInit>;
+  };
+  PageAllocator() = default;
+  template <typename U>
+  PageAllocator(const PageAllocator<U, kZeroInit>&) {}
+  T* allocate(size_t n) { return static_cast<T*>(allocate_zero_pages(n * sizeof(T))); }
+  void deallocate(T* p, size_t n) { free_zero_pages(p, n * sizeof(T)); }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    if constexpr (kZeroInit && sizeof...(Args) == 0) {
+      (void)p;  // zero already
+    } else {
+      ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
   }
-  void deallocate(T* p, size_t) { ::operator delete(p, std::align_val_t(kHostArrayAlignment)); }
   template <typename U>
-  bool operator==(const PageAlignedAllocator<U>&) const {
+  bool operator==(const PageAllocator<U, kZeroInit>&) const {
     return true;
   }
 };
 
 // A std::vector whose storage is page-aligned.
 template <typename T>
-using HostArray = std::vector<T, PageAlignedAllocator<T>>;
-
-}  // namespace voxr
-
-namespace voxr {
-
-// Allocator for large bit arrays that start zero: big blocks come straight from the kernel (mmap with the
-// pages populated in one go, which is cheaper than faulting them in one by one), already zero, so
-// `BitWords words(n)` needs no clearing pass. Elements are not value-initialised (construct() without
-// arguments does nothing): the memory is zero already. Page-aligned like HostArray.
-template <typename T>
-struct ZeroPageAllocator {
-  using value_type = T;
-  ZeroPageAllocator() = default;
-  template <typename U>
-  ZeroPageAllocator(const ZeroPageAllocator<U>&) {}
-  T* allocate(size_t n);
-  void deallocate(T* p, size_t n);
-  template <typename U>
-  void construct(U* p) {
-    (void)p;  // zero already
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-  template <typename U>
-  bool operator==(const ZeroPageAllocator<U>&) const {
-    return true;
-  }
-};
-
-// Blocks from and to the kernel (or small zeroed aligned blocks); see ZeroPageAllocator.
-void* allocate_zero_pages(size_t bytes);
-void free_zero_pages(void* p, size_t bytes);
-
-template <typename T>
-T* ZeroPageAllocator<T>::allocate(size_t n) {
-  return static_cast<T*>(allocate_zero_pages(n * sizeof(T)));
-}
-
-template <typename T>
-void ZeroPageAllocator<T>::deallocate(T* p, size_t n) {
-  free_zero_pages(p, n * sizeof(T));
-}
+using HostArray = std::vector<T, PageAllocator<T, false>>;
 
 // Dense bit arrays (occupancy, inside): bit (i % 32) of word (i / 32), zero until set. Size them from empty
 // (constructor, resize of an empty array, or assign): a resize that grows back within the capacity keeps
 // the old values beyond the former size, as elements are not cleared.
-using BitWords = std::vector<uint32_t, ZeroPageAllocator<uint32_t>>;
+using BitWords = std::vector<uint32_t, PageAllocator<uint32_t, true>>;
 
 }  // namespace voxr

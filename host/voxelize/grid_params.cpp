@@ -5,6 +5,14 @@
 
 namespace voxr {
 
+void expect_no_oversized(ClRuntime& cl, const cl::Buffer& too_large, const std::string& name) {
+  cl_uint oversized = 0;
+  cl.download(too_large, &oversized, 4, "readback " + name);
+  if (oversized)
+    throw InternalError(fmt::format("{} triangles exceed {} voxels; split_oversized_triangles must run first",
+                                    oversized, VOXR_MAX_TRIANGLE_EXTENT));
+}
+
 VoxGridParams make_grid_params(const GridSpec& grid, uint32_t triangle_count, uint32_t margin,
                                uint32_t rows_per_copy, uint32_t channels) {
   VoxGridParams params{};

@@ -99,12 +99,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     cl_.launch("setup", setup, listed, kGroup, params, mesh.positions(), mesh.triangles(), list, snapped,
                counts, info, too_large);
     if (!grid_method) copies = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, listed, "scan");
-    cl_uint oversized = 0;
-    cl_.download(too_large, &oversized, 4, "readback split check");
-    if (oversized)
-      throw InternalError(
-          fmt::format("{} triangles exceed {} voxels; split_oversized_triangles must run first", oversized,
-                      VOXR_MAX_TRIANGLE_EXTENT));
+    expect_no_oversized(cl_, too_large, "split check");
   }
 
   const uint64_t batch =

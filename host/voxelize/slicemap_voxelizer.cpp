@@ -101,11 +101,7 @@ void SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const 
   cl_.launch("setup", setup, tris, kGroup, params, mesh.positions(), mesh.triangles(), snapped, counts, info,
              too_large);
   const uint64_t records = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, tris, "scan");
-  cl_uint oversized = 0;
-  cl_.download(too_large, &oversized, 4, "readback split check");
-  if (oversized)
-    throw InternalError(fmt::format("{} triangles exceed {} voxels; split_oversized_triangles must run first",
-                                    oversized, VOXR_MAX_TRIANGLE_EXTENT));
+  expect_no_oversized(cl_, too_large, "split check");
 
   // Records per batch: within the budget and within the raster kernel's 32-bit record count.
   const uint64_t batch = std::max<uint64_t>(

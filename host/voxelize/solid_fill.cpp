@@ -133,12 +133,7 @@ void SolidFill::run_crossings(const DeviceMesh& mesh, const GridSpec& grid, Soli
     cl_.launch("solid setup", setup, tris, kGroup, params, mesh.positions(), mesh.triangles(), snapped,
                counts, too_large);
     const uint64_t items = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, tris, "solid scan");
-    cl_uint oversized = 0;
-    cl_.download(too_large, &oversized, 4, "readback solid split check");
-    if (oversized)
-      throw InternalError(
-          fmt::format("{} triangles exceed {} voxels; split_oversized_triangles must run first", oversized,
-                      VOXR_MAX_TRIANGLE_EXTENT));
+    expect_no_oversized(cl_, too_large, "solid split check");
     stats.work_items += items;
     cl::Kernel cross = cl_.kernel("vox_solid_cross.cl", "vox_solid_cross", cross_defines(mode));
     for (uint64_t base = 0; base < items; base += kItemsPerLaunch)
