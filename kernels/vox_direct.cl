@@ -154,7 +154,18 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
   const int u2x = (int)(x2 - bx), u2y = (int)(y2 - by), u2z = (int)(z2 - bz);
   /* fx may be negative (cells below the grid are skipped by the loop ranges) */
   const ulong row0 = (ulong)(((long)fz * grid.dims[1] + fy) * (long)grid.dims[0] + fx);
-  VOX_DIRECT_CONSERVATIVE_BODY
+  if ((sx == 1) + (sy == 1) + (sz == 1) >= 2) {
+    /* A triangle within one cell along two axes meets every cell of its range: its extent along those axes
+     * lies inside the cell's widened box, and it has a point at every coordinate of its range along the
+     * third. No test is needed (the most common case on fine meshes at coarse resolutions). */
+    for (int dk = lz; dk <= hz; ++dk)
+      for (int dj = ly; dj <= hy; ++dj) {
+        const ulong row = row0 + ((ulong)dk * grid.dims[1] + (ulong)dj) * grid.dims[0];
+        for (int di = lx; di <= hx; ++di) vox_emit(&w, row + (ulong)di);
+      }
+  } else {
+    VOX_DIRECT_CONSERVATIVE_BODY
+  }
   vox_flush(&w);
 #else
   VoxTri t;

@@ -142,7 +142,7 @@ inline void vox_fixed_normal(long3 n, int3* out) {
   const float fx = convert_float(n.x), fy = convert_float(n.y), fz = convert_float(n.z);
   const float len2 = (fx * fx + fy * fy) + fz * fz;
   const float scale = len2 > 0.0f ? (float)VOXR_NORMAL_ONE / sqrt(len2) : 0.0f;
-  *out = (int3)((int)rint(fx * scale), (int)rint(fy * scale), (int)rint(fz * scale));
+  *out = (int3)((int)vox_rint(fx * scale), (int)vox_rint(fy * scale), (int)vox_rint(fz * scale));
 }
 
 inline long3 vox_cross(long3 a, long3 b) {
