@@ -3,7 +3,7 @@
  * SLICEMAP_TILE_ROWS x SLICEMAP_TILE_COLS column centres (a triangle covering thousands of columns becomes
  * many work items, never one long loop).
  * in:  positions (float4), triangles (uint4: indices, material)
- * out: snapped[3t..3t+2] (fixed-point vertices, the layout vox_setup.cl stores), tile_counts[t],
+ * out: snapped[t] (voxr_layout.h VoxSnappedTriangle, as vox_setup.cl stores it), tile_counts[t],
  *      tile_info[t]; 0 tiles when the triangle covers no column centre of the
  *      grid (outside it, or edge-on to the slicing axis); too_large counts triangles the host should have
  *      split (must stay 0).

@@ -26,6 +26,9 @@
 #ifndef VOX_DIRECT_CELLS
 #define VOX_DIRECT_CELLS 64
 #endif
+#if VOX_DIRECT_SPAN > 8
+#error "the direct pass's 32-bit edge axes are proven exact for spans of at most 8 cells"
+#endif
 /* Widest conservative margin (1/VOXR_SUBVOXEL units) the 32-bit bounds allow. */
 #define VOX_DIRECT_MAX_MARGIN 64
 

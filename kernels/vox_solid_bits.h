@@ -5,7 +5,7 @@
  * bits (i >= nx) stay 0 and padding words are never read. One 32-bit word then holds 32 neighbouring
  * columns, so a work item can sweep 32 columns along z (or y) with whole-word operations and own every word
  * it writes (no atomics, deterministic). slice_words >= ny * words_x is an odd number of 64-byte lines (see
- * solid_voxelizer.cpp): a sweep along z then visits every cache set of a CPU device instead of one, which a
+ * solid_fill.cpp): a sweep along z then visits every cache set of a CPU device instead of one, which a
  * power-of-two layer size would do.
  * The dense layout of VoxelGrid::occ / inside packs linear indices (k * ny + j) * nx + i without padding. */
 #ifndef VOX_SOLID_BITS_H

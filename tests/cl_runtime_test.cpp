@@ -30,11 +30,13 @@ TEST(ProgramCache, StoresAndLoadsByTheFullKey) {
 TEST(ProgramCache, TruncatedEntriesAreIgnored) {
   test::TempDir dir;
   const ProgramCache cache(dir.path());
-  cache.store("k", {1, 2, 3});
-  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
-    std::filesystem::resize_file(entry.path(), 12);  // the magic and part of the length
+  for (const uintmax_t cut : {uintmax_t(12), uintmax_t(1)}) {  // in the header; the binary's last byte
+    cache.store("k", {1, 2, 3});
+    ASSERT_TRUE(cache.load("k"));
+    for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+      std::filesystem::resize_file(entry.path(), cut == 1 ? entry.file_size() - 1 : cut);
+    EXPECT_FALSE(cache.load("k")) << cut;
   }
-  EXPECT_FALSE(cache.load("k"));
 }
 
 TEST(ProgramCache, CorruptBinariesAreRebuiltFromSource) {
@@ -53,10 +55,14 @@ TEST(ProgramCache, CorruptBinariesAreRebuiltFromSource) {
     std::ifstream in(entry.path(), std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     in.close();
+    // magic (8), key length (8), binary length (8), key, binary
     uint64_t key_size = 0;
     std::memcpy(&key_size, bytes.data() + 8, 8);
-    bytes.resize(16 + key_size);
-    bytes += "not a program binary";
+    const std::string garbage = "not a program binary";
+    const uint64_t garbage_size = garbage.size();
+    bytes.resize(24 + key_size);
+    std::memcpy(bytes.data() + 16, &garbage_size, 8);
+    bytes += garbage;
     std::ofstream(entry.path(), std::ios::binary) << bytes;
   }
   EXPECT_EQ(entries, 1u);

@@ -234,8 +234,10 @@ TEST(Cli, Table1RunsTheOpenVdbPeerWhenBuilt) {
   const fs::path plugin = fs::path(VOXR_CLI_PATH).parent_path() / "libvoxr_openvdb_peer.so";
   if (!fs::exists(plugin)) GTEST_SKIP() << "built without OpenVDB";
   const fs::path out = scratch() / "t1";
-  const Result r = run("bench table1 --models torus --res 16 --methods hybrid-conservative,openvdb --repeat 1 "
-                       "--warmup 0 --out " + out.string());
+  const Result r =
+      run("bench table1 --models torus --res 16 --methods hybrid-conservative,openvdb --repeat 1 "
+          "--warmup 0 --out " +
+          out.string());
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string csv = slurp(out.string() + ".csv");
   EXPECT_NE(csv.find(",openvdb,"), std::string::npos) << csv;

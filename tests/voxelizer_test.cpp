@@ -125,6 +125,33 @@ TEST(Voxelizer, TheGridStaysOnTheDeviceFrameAfterFrame) {
   }
 }
 
+TEST(Voxelizer, AnAdoptedOccupancyArrayIsClearedBetweenRuns) {
+  // On a CPU device the occupancy can be written straight into a host array; a second run into the same
+  // array must not keep the first run's bits.
+  ClRuntime& cl = test::runtime();
+  const TriangleSoup first = test::random_soup(51, 200, -1.0f, 1.0f, 0.3f);
+  const TriangleSoup second = make_torus();
+  GridRequest request;
+  request.bounds = Bounds{glm::vec3(-1.5f), glm::vec3(1.5f)};
+  request.resolution = 40;
+  const GridSpec grid = fit_grid({}, request);
+  DeviceVoxelGrid frame;
+  frame.spec = grid;
+  BitWords host(frame.words());
+  if (!cl.can_use_in_place(host.data())) GTEST_SKIP() << "the device cannot use host memory in place";
+  frame.adopt_occupancy(cl, host.data(), host.size());
+  Voxelizer voxelizer(cl);
+  for (const TriangleSoup* soup : {&first, &second}) {
+    const DeviceMesh mesh = upload_mesh(cl, *soup, grid, SplitCull::kGrid);
+    voxelizer.run(mesh, grid, VoxelizeOptions{}, frame);
+  }
+  const VoxelGrid result = read_back(cl, frame, &host);
+  frame.release_adopted();
+  EXPECT_EQ(
+      test::compare_grids(reference_voxelize(second, grid, RasterMode::kConservative, ChannelSet{}), result),
+      "");
+}
+
 TEST(Voxelizer, OptionsThatCannotWorkAreRefused) {
   auto message = [](const VoxelizeOptions& options) {
     try {

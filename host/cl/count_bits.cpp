@@ -14,6 +14,8 @@ std::vector<ProgramSpec> count_bits_programs() {
 
 uint64_t count_bits(ClRuntime& cl, const cl::Buffer& words, uint64_t n, const std::string& name) {
   if (n == 0) return 0;
+  if (cl.device().extensions.find("cl_khr_int64_base_atomics") == std::string::npos)
+    fail("{} lacks cl_khr_int64_base_atomics, which counting the {} voxels needs", cl.device().label(), name);
   cl::Buffer total = cl.buffer(8, name + " total");
   cl.fill_zero(total, 8, "clear");
   const ProgramSpec spec = count_bits_programs().front();

@@ -9,6 +9,7 @@
 
 namespace voxr {
 
+// The programs count_bits builds, for building them ahead of timed work.
 std::vector<ProgramSpec> count_bits_programs();
 
 // Blocks until the count is known. Needs cl_khr_int64_base_atomics (PoCL and NVIDIA have it).

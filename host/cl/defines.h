@@ -9,4 +9,10 @@ namespace voxr {
 
 using Defines = std::vector<std::pair<std::string, std::string>>;
 
+// `defines` with name=value added.
+inline Defines with(Defines defines, const std::string& name, const std::string& value) {
+  defines.emplace_back(name, value);
+  return defines;
+}
+
 }  // namespace voxr

@@ -15,7 +15,9 @@ namespace voxr {
 
 namespace {
 
-constexpr char kMagic[8] = {'V', 'O', 'X', 'R', 'P', 'R', 'G', '1'};
+constexpr char kMagic[8] = {'V', 'O', 'X', 'R', 'P', 'R', 'G', '2'};
+// magic, key length (uint64), binary length (uint64), key text, binary
+constexpr size_t kHeader = sizeof kMagic + 2 * sizeof(uint64_t);
 
 uint64_t fnv1a(const std::string& text) {
   uint64_t h = 14695981039346656037ull;
@@ -48,15 +50,15 @@ std::optional<std::vector<unsigned char>> ProgramCache::load(const std::string& 
   std::ifstream in(entry(key), std::ios::binary);
   if (!in) return std::nullopt;
   std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  // magic, key length (uint64), key text, binary; compared as bytes (the sources hold UTF-8)
-  const size_t header = sizeof kMagic + sizeof(uint64_t);
-  if (bytes.size() < header || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) return std::nullopt;
-  uint64_t key_size = 0;
+  // Keys are compared as bytes (the sources hold UTF-8); a short or overlong file is a torn write.
+  if (bytes.size() < kHeader || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) return std::nullopt;
+  uint64_t key_size = 0, binary_size = 0;
   std::memcpy(&key_size, bytes.data() + sizeof kMagic, sizeof key_size);
-  if (key_size != key.size() || bytes.size() <= header + key_size ||
-      std::memcmp(bytes.data() + header, key.data(), key.size()) != 0)
+  std::memcpy(&binary_size, bytes.data() + sizeof kMagic + sizeof key_size, sizeof binary_size);
+  if (key_size != key.size() || binary_size == 0 || bytes.size() != kHeader + key_size + binary_size ||
+      std::memcmp(bytes.data() + kHeader, key.data(), key.size()) != 0)
     return std::nullopt;
-  return std::vector<unsigned char>(bytes.begin() + long(header + key_size), bytes.end());
+  return std::vector<unsigned char>(bytes.begin() + long(kHeader + key_size), bytes.end());
 }
 
 void ProgramCache::store(const std::string& key, const std::vector<unsigned char>& binary) const {
@@ -69,13 +71,14 @@ void ProgramCache::store(const std::string& key, const std::vector<unsigned char
       target.string() + fmt::format(".{}.{}.tmp", getpid(), counter.fetch_add(1));
   {
     std::ofstream out(temp, std::ios::binary);
-    const uint64_t key_size = key.size();
+    const uint64_t key_size = key.size(), binary_size = binary.size();
     out.write(kMagic, sizeof kMagic);
     out.write(reinterpret_cast<const char*>(&key_size), sizeof key_size);
+    out.write(reinterpret_cast<const char*>(&binary_size), sizeof binary_size);
     out.write(key.data(), std::streamsize(key.size()));
     out.write(reinterpret_cast<const char*>(binary.data()), std::streamsize(binary.size()));
+    out.close();  // flushes: a full disk shows here
     if (!out) {
-      out.close();
       std::filesystem::remove(temp, ec);
       return;
     }

@@ -1,13 +1,10 @@
 #include "cli/bench_voxelize.h"
 
 #include <fmt/format.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -17,6 +14,7 @@
 #include "bench/median.h"
 #include "bench/voxelize_cases.h"
 #include "cl/cl_runtime.h"
+#include "cli/process.h"
 #include "io/volume_writer.h"
 #include "voxelize/voxelizer.h"
 
@@ -25,11 +23,6 @@ namespace voxr::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 double load_average() {
   std::ifstream in("/proc/loadavg");
@@ -71,32 +64,24 @@ struct FreshRun {
   double report_process_ms = 0.0;
 };
 
-// Runs this executable as `voxr voxelize ...` and reads its report.
-FreshRun run_fresh(const std::vector<std::string>& arguments, const fs::path& report) {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (ec) fail("cannot find the voxr executable to start fresh processes");
+// Runs this executable as `voxr voxelize ...` and reads its report; the report's device must be `device`.
+FreshRun run_fresh(const std::vector<std::string>& arguments, const fs::path& report,
+                   const std::string& device) {
+  const fs::path self = executable_path();
+  if (self.empty()) fail("cannot find the voxr executable to start fresh processes");
   std::vector<std::string> args = {self.string(), "voxelize"};
   args.insert(args.end(), arguments.begin(), arguments.end());
   for (const char* extra : {"-q", "--report"}) args.push_back(extra);
   args.push_back(report.string());
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::fflush(stdout);
   const auto start = Clock::now();
-  pid_t pid = 0;
-  if (posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0)
-    fail("cannot start {}", argv[0]);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
+  const int status = run_program(args);
   FreshRun run;
   run.process_ms = ms_since(start);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    fail("the fresh process `voxr voxelize` failed (see above)");
+  if (status != 0) fail("the fresh process `voxr voxelize` failed (see above)");
   std::ifstream in(report);
   const nlohmann::json r = nlohmann::json::parse(in);
+  if (r["device"].get<std::string>() != device)
+    fail("the fresh process ran on {}, not {}", r["device"].get<std::string>(), device);
   run.wall_ms = r["ms"]["wall"].get<double>();
   run.report_process_ms = r["ms"]["process"].get<double>();
   return run;
@@ -172,6 +157,10 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
         // The whole job in this process, and in fresh processes, interleaved.
         std::vector<double> job_wall, fresh_wall, fresh_process;
         std::vector<std::string> flags = {mesh_file.string(), "--res", std::to_string(res)};
+        if (!args.device.empty()) {
+          flags.push_back("--device");
+          flags.push_back(args.device);
+        }
         const std::vector<std::string> case_flags = c->cli_flags();
         flags.insert(flags.end(), case_flags.begin(), case_flags.end());
         if (!output.empty()) {
@@ -185,7 +174,7 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
             if (r >= args.warmup) job_wall.push_back(job.wall_ms);
           }
           if (r < args.fresh) {
-            const FreshRun f = run_fresh(flags, scratch / "report.json");
+            const FreshRun f = run_fresh(flags, scratch / "report.json", cl.device().label());
             fresh_wall.push_back(f.wall_ms);
             fresh_process.push_back(f.process_ms);
           }

@@ -5,13 +5,10 @@
 // built (or loaded from the program cache) on a second thread while the mesh is read, and the timed
 // voxelization starts after both.
 #include <fmt/format.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include <cctype>
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -22,6 +19,7 @@
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
 #include "cli/parse_args.h"
+#include "cli/process.h"
 #include "core/default_scene.h"
 #include "core/mesh_topology.h"
 #include "core/scene.h"
@@ -50,11 +48,6 @@ struct VoxelizeArgs {
   bool view = false;
 };
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
@@ -67,26 +60,11 @@ std::filesystem::path find_viewer(const std::string& output) {
   const std::string ext = lower_extension(output);
   if (ext != ".vti" && ext != ".nrrd")
     fail("--view: voxr-view reads .vti and .nrrd outputs, not '{}'", output);
+  const std::filesystem::path viewer = executable_folder() / "voxr-view";
   std::error_code ec;
-  const std::filesystem::path viewer =
-      std::filesystem::read_symlink("/proc/self/exe", ec).parent_path() / "voxr-view";
-  if (ec || !std::filesystem::exists(viewer))
+  if (!std::filesystem::exists(viewer, ec))
     fail("--view: {} not found (configure with -DVOXR_BUILD_VIEWER=ON and build it)", viewer.string());
   return viewer;
-}
-
-// Runs voxr-view on `volume` and returns its exit code.
-int run_viewer(const std::filesystem::path& viewer, const std::string& volume) {
-  std::fflush(stdout);
-  std::string exe = viewer.string(), file = volume;
-  char* argv[] = {exe.data(), file.data(), nullptr};
-  pid_t pid = 0;
-  if (posix_spawn(&pid, exe.c_str(), nullptr, nullptr, argv, environ) != 0)
-    fail("--view: cannot start {}", exe);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 
 // Options from the flags, validated before any file is read.
@@ -191,6 +169,14 @@ int run_voxelize(const VoxelizeArgs& args) {
   if (tty)
     options.progress = [](const std::string& stage) { fmt::print(stderr, "\rvoxelizing: {:<12}", stage); };
 
+  // A missing or unreadable input fails at once, not after the device and programs are ready (the
+  // background thread is joined before any error leaves this function).
+  if (!args.input.empty()) {
+    std::error_code ec;
+    if (!std::filesystem::exists(args.input, ec)) fail("{}: no such file", args.input);
+    if (!std::ifstream(args.input, std::ios::binary))
+      fail("{}: cannot open the file for reading", args.input);
+  }
   // The device and the programs in the background while the input is read.
   std::future<Prepared> background = std::async(std::launch::async, prepare, args.device, options);
   Phases phases;
@@ -296,7 +282,7 @@ int run_voxelize(const VoxelizeArgs& args) {
     for (const auto& path : written) fmt::print("wrote      {}\n", path.string());
   }
   if (args.profile) fmt::print("\n{}", cl.profiler().table());
-  return args.view ? run_viewer(viewer, args.output) : 0;
+  return args.view ? run_program({viewer.string(), args.output}) : 0;
 }
 
 }  // namespace

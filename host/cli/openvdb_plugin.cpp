@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "cli/process.h"
 #include "peers/openvdb_peer.h"
 
 namespace voxr::cli {
@@ -11,9 +12,8 @@ namespace voxr::cli {
 namespace {
 
 std::filesystem::path plugin_path() {
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::filesystem::path() : exe.parent_path() / "libvoxr_openvdb_peer.so";
+  const std::filesystem::path folder = executable_folder();
+  return folder.empty() ? folder : folder / "libvoxr_openvdb_peer.so";
 }
 
 }  // namespace

@@ -19,8 +19,9 @@ inline constexpr size_t kHostArrayAlignment = 4096;
 void* allocate_zero_pages(size_t bytes);
 void free_zero_pages(void* p, size_t bytes);
 
-// The allocator of HostArray and BitWords. With kZeroInit, elements constructed without arguments are left
-// as the (zero) memory is, so `BitWords words(n)` needs no clearing pass.
+// The allocator of HostArray (kZeroInit false: page-aligned new, nothing touched, so a large reserve() costs
+// nothing until used) and BitWords (kZeroInit true: allocate_zero_pages, and elements constructed without
+// arguments are left as the zero memory is, so `BitWords words(n)` needs no clearing pass).
 template <typename T, bool kZeroInit>
 struct PageAllocator {
   using value_type = T;
@@ -31,8 +32,18 @@ struct PageAllocator {
   PageAllocator() = default;
   template <typename U>
   PageAllocator(const PageAllocator<U, kZeroInit>&) {}
-  T* allocate(size_t n) { return static_cast<T*>(allocate_zero_pages(n * sizeof(T))); }
-  void deallocate(T* p, size_t n) { free_zero_pages(p, n * sizeof(T)); }
+  T* allocate(size_t n) {
+    if constexpr (kZeroInit) return static_cast<T*>(allocate_zero_pages(n * sizeof(T)));
+    return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(kHostArrayAlignment)));
+  }
+  void deallocate(T* p, size_t n) {
+    if constexpr (kZeroInit) {
+      free_zero_pages(p, n * sizeof(T));
+    } else {
+      (void)n;
+      ::operator delete(p, std::align_val_t(kHostArrayAlignment));
+    }
+  }
   template <typename U, typename... Args>
   void construct(U* p, Args&&... args) {
     if constexpr (kZeroInit && sizeof...(Args) == 0) {
@@ -51,9 +62,9 @@ struct PageAllocator {
 template <typename T>
 using HostArray = std::vector<T, PageAllocator<T, false>>;
 
-// Dense bit arrays (occupancy, inside): bit (i % 32) of word (i / 32), zero until set. Size them from empty
-// (constructor, resize of an empty array, or assign): a resize that grows back within the capacity keeps
-// the old values beyond the former size, as elements are not cleared.
+// Dense bit arrays (occupancy, inside): bit (i % 32) of word (i / 32), zero until set. Size them with the
+// constructor, assign(), or resize() of an array that never held more elements: elements are not cleared,
+// so growing back within a capacity that held bits before (after clear() or a smaller resize) keeps them.
 using BitWords = std::vector<uint32_t, PageAllocator<uint32_t, true>>;
 
 }  // namespace voxr

@@ -52,7 +52,8 @@ MeshTopology count_by_vertex(const TriangleSoup& soup, Counted counted, size_t v
     if (counted(t))
       for (int c = 0; c < 3; ++c) ++next[std::min(t[c], t[(c + 1) % 3]) + 1];
   for (size_t v = 1; v <= vertices; ++v) next[v] += next[v - 1];
-  const std::unique_ptr<uint32_t[]> edges(new uint32_t[uses]);  // every element is written below
+  const std::unique_ptr<uint32_t[]> edges =
+      std::make_unique_for_overwrite<uint32_t[]>(uses);  // all written below
   for (const glm::uvec4& t : soup.triangles)
     if (counted(t))
       for (int c = 0; c < 3; ++c) {

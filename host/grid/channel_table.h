@@ -46,7 +46,9 @@ inline constexpr std::array<ChannelInfo, 5> kChannelTable = {{
     {Channel::kCount, "count", "count", "VOX_CH_COUNT", ElementType::kUInt32, 1, ChannelLayout::kSparse,
      "triangles that wrote the voxel (the papers' degree of occlusion)"},
     {Channel::kNormal, "normal", "normal", "VOX_CH_NORMAL", ElementType::kFloat32, 3, ChannelLayout::kSparse,
-     "unit vector, world frame: the normalized sum of the writers' unit normals"},
+     "unit vector in the grid's frame (GridSpec::axes; the world's for axis-aligned grids): the normalized "
+     "sum "
+     "of the writers' unit normals"},
     {Channel::kMaterial, "material", "material", "VOX_CH_MATERIAL", ElementType::kUInt32, 1,
      ChannelLayout::kSparse, "largest material id among the writers"},
     {Channel::kInside, "inside", "inside", "VOX_CH_INSIDE", ElementType::kUInt8, 1, ChannelLayout::kDenseBits,

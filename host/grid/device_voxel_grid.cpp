@@ -62,6 +62,8 @@ void DeviceVoxelGrid::adopt_occupancy(ClRuntime& cl, uint32_t* words_data, uint6
   occ.buffer = cl.in_place_buffer(words_data, count * 4, "the occupancy bits");
   occ.bytes = count * 4;
   adopted_ = true;
+  adopted_zero_ = true;
+  adopted_words_ = words_data;
 }
 
 void DeviceVoxelGrid::release_adopted() {
@@ -74,6 +76,8 @@ cl::Buffer& DeviceVoxelGrid::occupancy_for_writing(ClRuntime& cl) {
   const uint64_t bytes = words() * 4;
   if (adopted_) {
     VOXR_CHECK_LE(bytes, occ.bytes);
+    if (!adopted_zero_) cl.fill_zero(occ.buffer, bytes, "clear");
+    adopted_zero_ = false;
     return occ.buffer;
   }
   cl::Buffer& buffer = occ.ensure(cl, bytes, "the occupancy bits");
@@ -95,7 +99,7 @@ VoxelGrid read_back(ClRuntime& cl, DeviceVoxelGrid& grid, BitWords* adopted_occ)
   out.channels = grid.channels;
   const uint64_t words = grid.words();
   if (grid.occupancy_adopted()) {
-    VOXR_CHECK(adopted_occ && adopted_occ->data() && adopted_occ->size() == words);
+    VOXR_CHECK(adopted_occ && adopted_occ->data() == grid.adopted_words() && adopted_occ->size() == words);
     cl.sync_to_host(grid.occ.buffer, words * 4, "readback occupancy");
     out.occ = std::move(*adopted_occ);
   } else {

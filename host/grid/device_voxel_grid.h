@@ -53,6 +53,7 @@ class DeviceVoxelGrid {
   GrowingBuffer occ, inside, ranked;
   GrowingBuffer count, normal_sum, normal, material;
 
+  // 32-bit words of a dense bit channel (occ, inside) on `spec`.
   uint64_t words() const { return (spec.voxel_count() + 31) / 32; }
   // Device memory the present channels use.
   uint64_t device_bytes() const;
@@ -67,16 +68,21 @@ class DeviceVoxelGrid {
 
   // On a CPU device: the next voxelization writes its occupancy straight into `words` (zero, words() long
   // for the grid it runs on, aligned as ClRuntime::can_use_in_place needs, alive until release_adopted()),
-  // so there is nothing to clear and nothing to copy back.
+  // so there is nothing to clear and nothing to copy back. Later voxelizations into the same array clear it
+  // first.
   void adopt_occupancy(ClRuntime& cl, uint32_t* words, uint64_t count);
+  // Drops the buffer over the adopted array (the caller keeps the array); nothing when none is adopted.
   void release_adopted();
   bool occupancy_adopted() const { return adopted_; }
+  const uint32_t* adopted_words() const { return adopted_ ? adopted_words_ : nullptr; }
   // The occupancy buffer, ready for a voxelizer to set bits in: cleared, or the adopted (zero) host array.
   cl::Buffer& occupancy_for_writing(ClRuntime& cl);
 
  private:
   GrowingBuffer placeholder_;
   bool adopted_ = false;
+  bool adopted_zero_ = false;  // the adopted array has not been written yet
+  const uint32_t* adopted_words_ = nullptr;
 };
 
 // Builds the rank index from the occupancy (scan.cl) and sets voxels_set; nothing when it is current.

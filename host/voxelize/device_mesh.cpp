@@ -26,8 +26,9 @@ DeviceMesh upload_mesh(ClRuntime& cl, const TriangleSoup& soup, const GridSpec& 
   std::optional<TriangleSoup> pieces = split_oversized_triangles(soup, grid, &split, cull);
   if (!pieces) return DeviceMesh(cl, soup, bounds);
   // The pieces live as long as the mesh whose buffers may use them in place.
+  const Bounds input = bounds ? *bounds : soup.bounds();
   auto owned = std::make_shared<const TriangleSoup>(std::move(*pieces));
-  DeviceMesh mesh(cl, *owned, bounds);
+  DeviceMesh mesh(cl, *owned, &input);
   mesh.pieces_ = std::move(owned);
   mesh.triangles_split_ = split;
   return mesh;

@@ -22,7 +22,7 @@ class DeviceMesh {
   DeviceMesh(ClRuntime& cl, const TriangleSoup& soup, const Bounds* bounds = nullptr);
 
   uint32_t triangle_count() const { return triangle_count_; }
-  const Bounds& bounds() const { return bounds_; }  // world bounds of the used vertices
+  const Bounds& bounds() const { return bounds_; }  // world bounds of the input's used vertices (snap_margin)
   const cl::Buffer& positions() const { return positions_; }
   const cl::Buffer& triangles() const { return triangles_; }
   uint64_t triangles_split() const { return triangles_split_; }  // set by upload_mesh
@@ -42,8 +42,11 @@ class DeviceMesh {
 };
 
 // Splits the triangles too long for the exact predicates on `grid` (triangle_splitter.h, `cull` says which
-// pieces may go) and uploads the result; waits for the upload. `bounds` as for the constructor (the pieces
-// of split triangles stay inside the input's bounds).
+// pieces may go) and uploads the result; waits for the upload. `bounds` (optional) must contain the soup's
+// used vertices; the mesh keeps the input's bounds either way, so the conservative margin does not depend
+// on the splitting. On a CPU device the buffers use the arrays in place: `soup` must outlive the mesh and
+// stay unchanged while it is used (a deforming mesh uploads each frame's positions as a new DeviceMesh, or
+// keeps one soup per frame in flight); split pieces are owned by the mesh.
 DeviceMesh upload_mesh(ClRuntime& cl, const TriangleSoup& soup, const GridSpec& grid, SplitCull cull,
                        const Bounds* bounds = nullptr);
 

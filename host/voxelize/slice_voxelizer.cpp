@@ -17,11 +17,6 @@ Defines base_defines(const VoxelizeOptions& options) {
   return d;
 }
 
-Defines with(Defines d, const char* key, const std::string& value) {
-  d.push_back({key, value});
-  return d;
-}
-
 }  // namespace
 
 SliceVoxelizer::SliceVoxelizer(ClRuntime& cl, VoxelizeMethod method)
@@ -62,6 +57,19 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     scratch_bytes += bytes;
     return scratch_.get(what, bytes);
   };
+
+  // Count and normal sums accumulate packed in two 64-bit words per voxel (vox_scanline.h): refuse what they
+  // cannot hold before any work.
+  if (options.channels.has(Channel::kCount) || options.channels.has(Channel::kNormal)) {
+    if (tris > VOXR_MAX_ATTRIBUTE_TRIANGLES)
+      fail(
+          "{} triangles are more than the {} the packed count/normal sums hold exactly; drop count,normal or "
+          "split the mesh",
+          tris, VOXR_MAX_ATTRIBUTE_TRIANGLES);
+    if (cl_.device().extensions.find("cl_khr_int64_base_atomics") == std::string::npos)
+      fail("{} lacks cl_khr_int64_base_atomics, which the count and normal channels need",
+           cl_.device().label());
+  }
 
   progress("surface");
   cl::Buffer& occ = out.occupancy_for_writing(cl_);
@@ -139,16 +147,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     build_rank_index(cl_, out);
     const uint64_t set = out.voxels_set;
     if (set > 0xffffffffull) fail("{} set voxels exceed the 2^32 limit of the attribute channels", set);
-    // Count and normal sums accumulate packed in two 64-bit words per voxel (vox_scanline.h).
     const bool packed = options.channels.has(Channel::kCount) || options.channels.has(Channel::kNormal);
-    if (packed && tris > VOXR_MAX_ATTRIBUTE_TRIANGLES)
-      fail(
-          "{} triangles are more than the {} the packed count/normal sums hold exactly; drop count,normal or "
-          "split the mesh",
-          tris, VOXR_MAX_ATTRIBUTE_TRIANGLES);
-    if (packed && cl_.device().extensions.find("cl_khr_int64_base_atomics") == std::string::npos)
-      fail("{} lacks cl_khr_int64_base_atomics, which the count and normal channels need",
-           cl_.device().label());
     cl::Buffer acc = dummy;
     if (packed) {
       acc = scratch("the count/normal accumulators", set * 16);

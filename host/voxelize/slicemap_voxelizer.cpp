@@ -24,11 +24,6 @@ Defines slicemap_defines(bool local) {
           {"SLICEMAP_LOCAL", local ? "1" : "0"}};
 }
 
-Defines with(Defines d, const char* key, const char* value) {
-  d.push_back({key, value});
-  return d;
-}
-
 }  // namespace
 
 const char* slicemap_slicing_name(SlicemapSlicing slicing) {

@@ -5,8 +5,13 @@
 
 namespace voxr {
 
-uint32_t snap_margin(const GridSpec& grid, const Bounds& bounds) {
+uint32_t snap_margin(const GridSpec& grid, const Bounds& mesh_bounds) {
   const std::array<float, 12> m = grid.world_to_grid();
+  Bounds bounds = mesh_bounds;
+  for (int c = 0; c < 8; ++c)
+    bounds.extend(grid.origin + grid.axes * (glm::vec3(c & 1 ? grid.dims.x : 0u, c & 2 ? grid.dims.y : 0u,
+                                                       c & 4 ? grid.dims.z : 0u) *
+                                             grid.voxel_size));
   double worst = 0.0;
   for (int a = 0; a < 3; ++a) {
     const float* r = m.data() + 4 * a;

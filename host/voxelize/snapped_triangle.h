@@ -18,13 +18,13 @@ struct SnappedTriangle {
   uint32_t material = 0;
 };
 
-// Bound, in 1/VOXR_SUBVOXEL voxel units (rounded up, at least 1), on how far a snapped vertex of a mesh
-// inside `bounds` (world) can lie from the exact grid coordinates of its input position — the position's
-// transform by `grid` in exact arithmetic: half a unit from rounding to the lattice, plus the error of the
-// float transform (16 ulp of the terms it sums, a generous bound). Conservative voxelization widens every
-// voxel box by this much, so a voxel the input triangle touches is never lost (the widened test is a
-// superset of the exact one: each point of the input triangle has a point of the snapped triangle within
-// the bound, barycentric coordinates being the same).
+// Bound, in 1/VOXR_SUBVOXEL voxel units (rounded up, at least 1), on how far a snapped vertex inside `bounds`
+// or the grid's own box (world; the splitter may move pieces towards the grid) can lie from the exact grid
+// coordinates of its input position — the position's transform by `grid` in exact arithmetic: half a unit
+// from rounding to the lattice, plus the error of the float transform (16 ulp of the terms it sums, a
+// generous bound). Conservative voxelization widens every voxel box by this much, so a voxel the input
+// triangle touches is never lost (the widened test is a superset of the exact one: each point of the input
+// triangle has a point of the snapped triangle within the bound, barycentric coordinates being the same).
 uint32_t snap_margin(const GridSpec& grid, const Bounds& bounds);
 
 // Grid-unit coordinates exactly as the kernels compute them.

@@ -33,11 +33,6 @@ Defines group() {
   return {{"WG_SIZE", std::to_string(kGroup)}};
 }
 
-Defines with(Defines d, const char* key, const std::string& value) {
-  d.push_back({key, value});
-  return d;
-}
-
 Defines cross_defines(SolidMode mode) {
   return with(with(with(group(), "VOX_SOLID_ROWS", std::to_string(kRowsPerItem)), "VOX_SOLID_RULE",
                    mode == SolidMode::kXor ? "1" : "0"),

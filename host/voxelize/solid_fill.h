@@ -49,6 +49,7 @@ class SolidFill {
   explicit SolidFill(ClRuntime& cl);
   ~SolidFill();
 
+  // The programs a fill in `mode` builds (flood includes its conservative surface's).
   std::vector<ProgramSpec> programs(SolidMode mode) const;
 
   // Fills out.inside (dense bits) and out.inside_voxels with the voxels whose CENTRE `mode` judges inside.

@@ -111,21 +111,32 @@ VoxelGrid Voxelizer::run(const TriangleSoup& soup, const GridSpec& grid, const V
   const DeviceMesh mesh =
       upload_mesh(cl_, soup, grid, options.solid ? SplitCull::kColumns : SplitCull::kGrid, bounds);
   // A CPU device sets the occupancy bits straight into the result's (zero) pages.
-  const uint64_t words = (grid.voxel_count() + 31) / 32;
-  cl_.check_allocation(words * 4, "the occupancy bits");
-  BitWords occ(words);
-  if (cl_.can_use_in_place(occ.data())) grid_.adopt_occupancy(cl_, occ.data(), occ.size());
-  VoxelizeStats local;
-  try {
-    run(mesh, grid, options, grid_, &local);
-  } catch (...) {
-    grid_.release_adopted();
-    throw;
+  BitWords occ;
+  if (cl_.device().host_memory) {
+    grid_.spec = grid;
+    cl_.check_allocation(grid_.words() * 4, "the occupancy bits");
+    occ = BitWords(grid_.words());
+    if (cl_.can_use_in_place(occ.data())) grid_.adopt_occupancy(cl_, occ.data(), occ.size());
   }
+  // Whatever happens below, the kernels are done with the adopted pages (and the mesh's in-place arrays)
+  // before they are released.
+  struct Release {
+    ClRuntime& cl;
+    DeviceVoxelGrid& grid;
+    ~Release() {
+      try {
+        cl.queue().finish();
+      } catch (...) {
+        // already failing; the queue's error was or will be reported
+      }
+      grid.release_adopted();
+    }
+  } release{cl_, grid_};
+  VoxelizeStats local;
+  run(mesh, grid, options, grid_, &local);
   if (options.progress) options.progress("readback");
   const auto before = cl_.profiler().stats();
   VoxelGrid result = read_back(cl_, grid_, &occ);
-  grid_.release_adopted();
   local.voxels_set = result.voxels_set;
   local.upload_ms = mesh.upload_ms();
   local.readback_ms += cl_.profiler().since(before).readback_ms;

@@ -61,6 +61,7 @@ inline constexpr std::array<MethodInfo, 4> kMethods = {{
      false, false},
 }};
 
+// The kMethods entry of `method`.
 const MethodInfo& method_info(VoxelizeMethod method);
 // Throws voxr::Error naming the unknown method and listing the known ones.
 VoxelizeMethod parse_voxelize_method(std::string_view name);
@@ -90,8 +91,9 @@ struct VoxelizeStats {
   uint64_t copies = 0;            // records: (triangle, slab, row block) copies or slicemap tiles
   uint64_t work_items = 0;        // raster work items: direct triangles + copies, or triangles x slabs (grid)
   uint64_t batches = 0;
-  uint64_t voxels_set = 0;
-  uint32_t margin = 0;  // conservative: widening of voxel boxes, 1/VOXR_SUBVOXEL voxel units
+  uint64_t voxels_set = 0;  // known when the run builds the rank index or reads back; 0 for a device-only
+                            // occupancy run (build_rank_index or read_back gives it)
+  uint32_t margin = 0;      // conservative: widening of voxel boxes, 1/VOXR_SUBVOXEL voxel units
   // solid fill
   uint64_t inside_voxels = 0;
   uint64_t questionable_columns = 0;  // late: columns with an odd crossing count
@@ -142,6 +144,7 @@ class Voxelizer {
   VoxelGrid run(const TriangleSoup& soup, const GridSpec& grid, const VoxelizeOptions& options,
                 VoxelizeStats* stats = nullptr, const Bounds* bounds = nullptr);
 
+  // The surface voxelizer of `method` (made on first use), e.g. to read a slicemap's raw bits.
   SurfaceVoxelizer& surface(VoxelizeMethod method);
 
  private:

@@ -136,7 +136,7 @@ void expect_kernels_equal_reference(const TriangleSoup& soup, const GridSpec& gr
   }
 }
 
-TEST(SolidVoxelizer, ParsesModeNames) {
+TEST(SolidFill, ParsesModeNames) {
   for (SolidMode mode : kModes) EXPECT_EQ(parse_solid_mode(solid_mode_name(mode)), mode);
   try {
     parse_solid_mode("fill");
@@ -146,7 +146,7 @@ TEST(SolidVoxelizer, ParsesModeNames) {
   }
 }
 
-TEST(SolidVoxelizer, CompareInsideCountsMissingAndExtra) {
+TEST(SolidFill, CompareInsideCountsMissingAndExtra) {
   const GridSpec grid = unit_grid({5, 4, 3});
   VoxelGrid g;
   g.spec = grid;
@@ -162,7 +162,7 @@ TEST(SolidVoxelizer, CompareInsideCountsMissingAndExtra) {
   EXPECT_EQ(off_shell.extra, 0u);
 }
 
-TEST(SolidVoxelizer, KernelsEqualTheirReferenceOnSmallMeshes) {
+TEST(SolidFill, KernelsEqualTheirReferenceOnSmallMeshes) {
   const std::vector<std::pair<std::string, TriangleSoup>> meshes = {
       {"torus", make_torus()},
       {"sphere", make_uv_sphere()},
@@ -175,7 +175,7 @@ TEST(SolidVoxelizer, KernelsEqualTheirReferenceOnSmallMeshes) {
   for (const auto& [name, soup] : meshes) expect_kernels_equal_reference(soup, fitted(soup, 30), name);
 }
 
-TEST(SolidVoxelizer, KernelsEqualTheirReferenceAcrossWords) {
+TEST(SolidFill, KernelsEqualTheirReferenceAcrossWords) {
   // Rows of three words (x = 70), dims not multiples of 32: word carries of the x sweep and the repair.
   const TriangleSoup torus = make_torus();
   expect_kernels_equal_reference(torus, fitted(torus, 70), "torus 70");
@@ -185,7 +185,7 @@ TEST(SolidVoxelizer, KernelsEqualTheirReferenceAcrossWords) {
   expect_kernels_equal_reference(soup, fit_grid(soup.bounds(), r), "random soup 70x33x21");
 }
 
-TEST(SolidVoxelizer, ParityEqualsExactInsideOnClosedMeshes) {
+TEST(SolidFill, ParityEqualsExactInsideOnClosedMeshes) {
   std::vector<std::pair<std::string, TriangleSoup>> meshes = {
       {"torus", make_torus()}, {"sphere", make_uv_sphere()}, {"vase", make_vase()}, {"box", make_box()}};
   const std::string bunny = test::mesh_path("bunny.obj");
@@ -224,7 +224,7 @@ TEST(SolidVoxelizer, ParityEqualsExactInsideOnClosedMeshes) {
   }
 }
 
-TEST(SolidVoxelizer, ParityEqualsExactInsideOnRotatedAndCroppedGrids) {
+TEST(SolidFill, ParityEqualsExactInsideOnRotatedAndCroppedGrids) {
   SolidRunner solid;
   const TriangleSoup torus = make_torus();
   GridSpec rotated = fitted(torus, 36);
@@ -248,7 +248,7 @@ TEST(SolidVoxelizer, ParityEqualsExactInsideOnRotatedAndCroppedGrids) {
   }
 }
 
-TEST(SolidVoxelizer, TieRulesOnVoxelCentres) {
+TEST(SolidFill, TieRulesOnVoxelCentres) {
   // Box faces through voxel centres on all six sides (voxel 0.5, centres at -1.75 + 0.5 n; faces at +-1.25,
   // the centres of voxels 1 and 6). The column rule is the perturbation (x + e, y - e^2): the low-x and
   // high-y faces keep their columns (i = 1..5, j = 2..6); along z a crossing at a centre counts as below it:
@@ -277,7 +277,7 @@ TEST(SolidVoxelizer, TieRulesOnVoxelCentres) {
   EXPECT_EQ(compare_inside(solid.run(octa, grid, SolidMode::kParity), exact).total(), 0u);
 }
 
-TEST(SolidVoxelizer, XorJudgesVoxelsAtTheTopOfTheirSlab) {
+TEST(SolidFill, XorJudgesVoxelsAtTheTopOfTheirSlab) {
   // Columns i, j = 2..5 (16 of them). Faces at z = 1.7 and 6.8 lie in the upper halves of slabs 1 and 6: the
   // centre rule gives k = 2..6, xor k = 1..5 (one layer extra at the bottom, one missing at the top). At
   // z = 1.3 and 6.2 (lower halves) both give k = 1..5.
@@ -295,7 +295,7 @@ TEST(SolidVoxelizer, XorJudgesVoxelsAtTheTopOfTheirSlab) {
   EXPECT_EQ(compare_inside(solid.run(low, grid, SolidMode::kXor), low_exact).total(), 0u);
 }
 
-TEST(SolidVoxelizer, FastWindingNumberEqualsTheDirectSum) {
+TEST(SolidFill, FastWindingNumberEqualsTheDirectSum) {
   const TriangleSoup soup = sphere_with_holes();
   const GridSpec grid = fitted(soup, 20);
   const std::vector<uint32_t> fast = reference_inside_winding(soup, grid);
@@ -337,7 +337,7 @@ HoleReport measure_holes(const TriangleSoup& soup, const GridSpec& grid, const c
   return out;
 }
 
-TEST(SolidVoxelizer, SphereWithSubVoxelHoles) {
+TEST(SolidFill, SphereWithSubVoxelHoles) {
   // Holes of one triangle each, narrower than a voxel at 24^3: the conservative surface stays closed.
   const TriangleSoup soup = sphere_with_holes();
   ASSERT_FALSE(closed(soup));
@@ -358,7 +358,7 @@ TEST(SolidVoxelizer, SphereWithSubVoxelHoles) {
   EXPECT_LT(m[SolidMode::kLate].all.total(), m[SolidMode::kParity].all.total());
 }
 
-TEST(SolidVoxelizer, SphereWithHolesLargerThanAVoxel) {
+TEST(SolidFill, SphereWithHolesLargerThanAVoxel) {
   // At 40^3 the same holes are wider than a voxel: the flood leaks in and loses the interior, while late
   // filling still repairs the odd columns.
   const TriangleSoup soup = sphere_with_holes();
@@ -368,7 +368,7 @@ TEST(SolidVoxelizer, SphereWithHolesLargerThanAVoxel) {
   EXPECT_GT(m[SolidMode::kParity].off_surface.missing, 200u);
 }
 
-TEST(SolidVoxelizer, SharkWithLargeHoles) {
+TEST(SolidFill, SharkWithLargeHoles) {
   // mech-holes-shark has four open boundaries 0.2 to 0.75 of its size across: far wider than any voxel, so
   // the flood runs in and loses nearly all of the interior. Late filling is the closest to the winding
   // number.
@@ -385,7 +385,7 @@ TEST(SolidVoxelizer, SharkWithLargeHoles) {
   EXPECT_LT(m[SolidMode::kXor].all.total(), m[SolidMode::kFlood].all.total());
 }
 
-TEST(SolidVoxelizer, StatsAndRepeatability) {
+TEST(SolidFill, StatsAndRepeatability) {
   const TriangleSoup soup = test::random_soup(9, 120, -1.0f, 1.0f, 0.5f);
   const GridSpec grid = fitted(soup, 24);
   SolidRunner solid;

@@ -1,0 +1,26 @@
+// Small helpers the subcommands share: the wall clock, and starting a program and waiting for it.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace voxr::cli {
+
+using Clock = std::chrono::steady_clock;
+
+// Milliseconds since `start` on the steady clock.
+inline double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// The running executable, and its folder (voxr-view and the OpenVDB plugin live beside it); empty if unknown.
+std::filesystem::path executable_path();
+std::filesystem::path executable_folder();
+
+// Runs `argv` (argv[0] = the program's path) with this process's environment, waits for it and returns its
+// exit status (1 when it did not exit normally). Throws voxr::Error when it cannot be started.
+int run_program(std::vector<std::string> argv);
+
+}  // namespace voxr::cli
