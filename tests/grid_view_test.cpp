@@ -33,12 +33,6 @@ TriangleSoup torus_and_box() {
   return soup;
 }
 
-GridSpec fitted(const TriangleSoup& soup, uint32_t res) {
-  GridRequest r;
-  r.resolution = res;
-  return fit_grid(soup.bounds(), r);
-}
-
 GridSpec with_dims(const TriangleSoup& soup, glm::uvec3 dims) {
   GridRequest r;
   r.dims = dims;
@@ -151,7 +145,7 @@ std::string compare_fetch(const VoxelGrid& host, const Fetched& f, bool with_ran
 TEST(GridView, FetchesEveryChannelWithoutReadback) {
   ClRuntime& cl = test::runtime();
   const TriangleSoup soup = torus_and_box();
-  const GridSpec spec = fitted(soup, 48);
+  const GridSpec spec = test::fitted(soup, 48);
   ASSERT_FALSE(spec.dims.x == spec.dims.y && spec.dims.y == spec.dims.z) << "the test wants a non-cubic grid";
   DeviceVoxelGrid grid;
   voxelize(soup, spec, options("occ,count,normal,material", true), grid);
@@ -171,7 +165,7 @@ TEST(GridView, FetchesEveryChannelWithoutReadback) {
 TEST(GridView, OccupancyOnlyGridReadsZeroForAbsentChannels) {
   ClRuntime& cl = test::runtime();
   const TriangleSoup soup = torus_and_box();
-  const GridSpec spec = fitted(soup, 40);
+  const GridSpec spec = test::fitted(soup, 40);
   DeviceVoxelGrid grid;
   voxelize(soup, spec, options("occ", false), grid);
   EXPECT_FALSE(grid.has_rank_index) << "occupancy alone needs no rank index";
@@ -190,7 +184,7 @@ TEST(GridView, OccupancyOnlyGridReadsZeroForAbsentChannels) {
 TEST(GridView, InsideWithoutSparseChannels) {
   ClRuntime& cl = test::runtime();
   const TriangleSoup soup = torus_and_box();
-  const GridSpec spec = fitted(soup, 40);
+  const GridSpec spec = test::fitted(soup, 40);
   DeviceVoxelGrid grid;
   voxelize(soup, spec, options("occ", true), grid);
   ASSERT_TRUE(grid.channels.has(Channel::kInside));

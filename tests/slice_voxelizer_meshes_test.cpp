@@ -28,12 +28,6 @@ void expect_exact(const TriangleSoup& soup, const GridSpec& grid, RasterMode mod
   EXPECT_EQ(test::compare_grids(expected, actual), "") << what << " " << raster_mode_name(mode);
 }
 
-GridSpec fitted(const TriangleSoup& soup, uint32_t res) {
-  GridRequest r;
-  r.resolution = res;
-  return fit_grid(soup.bounds(), r);
-}
-
 TEST(SliceVoxelizerMeshes, ProceduralMeshesEqualReference) {
   const std::pair<const char*, TriangleSoup> meshes[] = {
       {"torus", make_torus()},
@@ -43,7 +37,7 @@ TEST(SliceVoxelizerMeshes, ProceduralMeshesEqualReference) {
   };
   for (const auto& [name, soup] : meshes)
     for (RasterMode mode : {RasterMode::kConservative, RasterMode::kCenter})
-      expect_exact(soup, fitted(soup, 64), mode, name);
+      expect_exact(soup, test::fitted(soup, 64), mode, name);
 }
 
 TEST(SliceVoxelizerMeshes, DebianMeshesEqualReference) {
@@ -51,15 +45,15 @@ TEST(SliceVoxelizerMeshes, DebianMeshesEqualReference) {
     const std::string path = test::mesh_path(name);
     if (path.empty()) GTEST_SKIP() << name << " missing: run scripts/fetch-meshes.sh";
     const TriangleSoup soup = load_mesh(path);
-    expect_exact(soup, fitted(soup, 96), RasterMode::kConservative, name);
-    expect_exact(soup, fitted(soup, 96), RasterMode::kCenter, name);
+    expect_exact(soup, test::fitted(soup, 96), RasterMode::kConservative, name);
+    expect_exact(soup, test::fitted(soup, 96), RasterMode::kCenter, name);
   }
 }
 
 TEST(SliceVoxelizerMeshes, SubVoxelTriangles) {
   const TriangleSoup soup = test::random_soup(11, 500, -1.0f, 1.0f, 0.004f);
   for (RasterMode mode : {RasterMode::kConservative, RasterMode::kCenter})
-    expect_exact(soup, fitted(soup, 64), mode, "sub-voxel");
+    expect_exact(soup, test::fitted(soup, 64), mode, "sub-voxel");
 }
 
 TEST(SliceVoxelizerMeshes, TriangleSpanningTheWholeGrid) {
@@ -67,7 +61,7 @@ TEST(SliceVoxelizerMeshes, TriangleSpanningTheWholeGrid) {
   soup.positions = {{-1, -1, -1, 1}, {1, -0.8f, 0.9f, 1}, {0.2f, 1, 1, 1}};
   soup.triangles = {{0, 1, 2, 3}};
   for (RasterMode mode : {RasterMode::kConservative, RasterMode::kCenter})
-    expect_exact(soup, fitted(soup, 70), mode, "spanning");
+    expect_exact(soup, test::fitted(soup, 70), mode, "spanning");
 }
 
 TEST(SliceVoxelizerMeshes, MeshTouchingTheGridBounds) {
@@ -124,7 +118,7 @@ TEST(SliceVoxelizerMeshes, OversizedTrianglesAreSplitAndStayClose) {
 
 TEST(SliceVoxelizerMeshes, RepeatedRunsAreBitIdentical) {
   const TriangleSoup soup = make_tree(2.0f, 3);
-  const GridSpec grid = fitted(soup, 80);
+  const GridSpec grid = test::fitted(soup, 80);
   const VoxelGrid a = run_kernels(soup, grid, RasterMode::kConservative);
   const VoxelGrid b = run_kernels(soup, grid, RasterMode::kConservative);
   EXPECT_EQ(a.occ, b.occ);

@@ -26,26 +26,20 @@ void expect_matches_reference(const TriangleSoup& soup, const GridSpec& grid, Ra
   EXPECT_EQ(test::compare_grids(expected, actual), "") << raster_mode_name(mode);
 }
 
-GridSpec fitted(const TriangleSoup& soup, uint32_t res) {
-  GridRequest r;
-  r.resolution = res;
-  return fit_grid(soup.bounds(), r);
-}
-
 TEST(SliceVoxelizer, RandomSoupConservativeEqualsReference) {
   const TriangleSoup soup = test::random_soup(1, 400, -1.0f, 1.0f, 0.3f);
-  expect_matches_reference(soup, fitted(soup, 48), RasterMode::kConservative);
+  expect_matches_reference(soup, test::fitted(soup, 48), RasterMode::kConservative);
 }
 
 TEST(SliceVoxelizer, RandomSoupCenterEqualsReference) {
   const TriangleSoup soup = test::random_soup(2, 400, -1.0f, 1.0f, 0.3f);
-  expect_matches_reference(soup, fitted(soup, 48), RasterMode::kCenter);
+  expect_matches_reference(soup, test::fitted(soup, 48), RasterMode::kCenter);
 }
 
 TEST(SliceVoxelizer, LargeTrianglesUseClippingAndStayExact) {
   const TriangleSoup soup = test::random_soup(3, 60, -1.0f, 1.0f, 2.0f);
   for (RasterMode mode : {RasterMode::kConservative, RasterMode::kCenter})
-    expect_matches_reference(soup, fitted(soup, 40), mode);
+    expect_matches_reference(soup, test::fitted(soup, 40), mode);
 }
 
 TEST(SliceVoxelizer, BoxOnVoxelFacesAtSeveralResolutions) {
@@ -63,12 +57,12 @@ TEST(SliceVoxelizer, BoxOnVoxelFacesAtSeveralResolutions) {
 TEST(SliceVoxelizer, RowsPerCopyDoesNotChangeTheResult) {
   const TriangleSoup soup = test::random_soup(4, 200, -1.0f, 1.0f, 1.0f);
   for (uint32_t rows : {1u, 3u, 16u})
-    expect_matches_reference(soup, fitted(soup, 32), RasterMode::kConservative, rows);
+    expect_matches_reference(soup, test::fitted(soup, 32), RasterMode::kConservative, rows);
 }
 
 TEST(SliceVoxelizer, BatchesGiveTheSameGrid) {
   const TriangleSoup soup = test::random_soup(5, 300, -1.0f, 1.0f, 0.5f);
-  const GridSpec grid = fitted(soup, 40);
+  const GridSpec grid = test::fitted(soup, 40);
   Voxelizer voxelizer(test::runtime());
   VoxelizeOptions one;
   one.channels = all_channels();
@@ -90,7 +84,7 @@ namespace {
 TEST(SliceVoxelizer, GridBaselineEqualsSliceMethod) {
   // Llamas' per-slab passes and the papers' duplication share the scanline code: identical voxels.
   const TriangleSoup soup = test::random_soup(6, 300, -1.0f, 1.0f, 0.8f);
-  const GridSpec grid = fitted(soup, 40);
+  const GridSpec grid = test::fitted(soup, 40);
   Voxelizer voxelizer(test::runtime());
   for (RasterMode mode : {RasterMode::kConservative, RasterMode::kCenter}) {
     VoxelizeOptions slice;

@@ -20,19 +20,6 @@ namespace {
 
 constexpr SlicemapSlicing kBoth[] = {SlicemapSlicing::kUniform, SlicemapSlicing::kLocal};
 
-GridSpec fitted(const TriangleSoup& soup, uint32_t res) {
-  GridRequest r;
-  r.resolution = res;
-  return fit_grid(soup.bounds(), r);
-}
-
-// Grid units = world units: voxel (i, j, k) is [i, i+1] x [j, j+1] x [k, k+1].
-GridSpec unit_grid(glm::uvec3 dims) {
-  GridSpec g;
-  g.dims = dims;
-  return g;
-}
-
 // Quad [0, w] x [0, h] at height z (two triangles).
 void add_plane(TriangleSoup& soup, float w, float h, float z) {
   const uint32_t base = uint32_t(soup.positions.size());
@@ -120,7 +107,7 @@ TEST(Slicemap, ProceduralMeshesEqualReference) {
   const std::pair<const char*, TriangleSoup> meshes[] = {{"torus", make_torus()},
                                                          {"sphere", make_uv_sphere(1.0f, 16, 32)}};
   for (const auto& [name, soup] : meshes)
-    for (SlicemapSlicing s : kBoth) expect_exact(soup, fitted(soup, 64), s, name);
+    for (SlicemapSlicing s : kBoth) expect_exact(soup, test::fitted(soup, 64), s, name);
 }
 
 TEST(Slicemap, RandomSoupsEqualReference) {
@@ -131,11 +118,11 @@ TEST(Slicemap, RandomSoupsEqualReference) {
   GridRequest crop;
   crop.bounds = Bounds{{-0.6f, -0.7f, -0.5f}, {0.8f, 0.6f, 0.4f}};
   crop.resolution = 40;
-  GridSpec flat = fitted(small, 48);
+  GridSpec flat = test::fitted(small, 48);
   flat.dims.z = 37;
   for (SlicemapSlicing s : kBoth) {
-    expect_exact(small, fitted(small, 48), s, "small");
-    expect_exact(large, fitted(large, 40), s, "large");
+    expect_exact(small, test::fitted(small, 48), s, "small");
+    expect_exact(large, test::fitted(large, 40), s, "large");
     expect_exact(small, fit_grid({}, crop), s, "cropped small");
     expect_exact(large, fit_grid({}, crop), s, "cropped large");
     expect_exact(small, flat, s, "non-cubic");
@@ -146,19 +133,19 @@ TEST(Slicemap, BunnyEqualsReference) {
   const std::string path = test::mesh_path("bunny.obj");
   if (path.empty()) GTEST_SKIP() << "bunny.obj missing: run scripts/fetch-meshes.sh";
   const TriangleSoup soup = load_mesh(path);
-  for (SlicemapSlicing s : kBoth) expect_exact(soup, fitted(soup, 96), s, "bunny");
+  for (SlicemapSlicing s : kBoth) expect_exact(soup, test::fitted(soup, 96), s, "bunny");
 }
 
 TEST(Slicemap, UniformEqualsSliceVoxelizerCenter) {
-  expect_uniform_equals_center(make_torus(), fitted(make_torus(), 96), "torus");
-  expect_uniform_equals_center(make_uv_sphere(1.0f, 16, 32), fitted(make_uv_sphere(1.0f, 16, 32), 80),
+  expect_uniform_equals_center(make_torus(), test::fitted(make_torus(), 96), "torus");
+  expect_uniform_equals_center(make_uv_sphere(1.0f, 16, 32), test::fitted(make_uv_sphere(1.0f, 16, 32), 80),
                                "sphere");
   const TriangleSoup soup = test::random_soup(23, 500, -1.0f, 1.0f, 0.8f);
-  expect_uniform_equals_center(soup, fitted(soup, 64), "random");
+  expect_uniform_equals_center(soup, test::fitted(soup, 64), "random");
   const std::string path = test::mesh_path("bunny.obj");
   if (path.empty()) GTEST_SKIP() << "bunny.obj missing: run scripts/fetch-meshes.sh";
   const TriangleSoup bunny = load_mesh(path);
-  expect_uniform_equals_center(bunny, fitted(bunny, 160), "bunny");
+  expect_uniform_equals_center(bunny, test::fitted(bunny, 160), "bunny");
 }
 
 TEST(Slicemap, LocalResolvesSurfacesCloserThanAVoxel) {
@@ -168,7 +155,7 @@ TEST(Slicemap, LocalResolvesSurfacesCloserThanAVoxel) {
   TriangleSoup soup;
   add_plane(soup, 16, 16, 10.25f);
   add_plane(soup, 16, 16, 10.75f);
-  const GridSpec grid = unit_grid({16, 16, 32});
+  const GridSpec grid = test::unit_grid({16, 16, 32});
   const SlicemapRun uniform_run = run_slicemap(soup, grid, SlicemapSlicing::kUniform);
   const SlicemapRun local_run = run_slicemap(soup, grid, SlicemapSlicing::kLocal);
   const Slicemap &uniform = uniform_run.map, &local = local_run.map;
@@ -196,7 +183,7 @@ TEST(Slicemap, LocalBitStraddlingAVoxelFaceAddsAVoxel) {
   // each of the 256 columns (bits 0 and 7 stay inside voxels 1 and 5).
   TriangleSoup soup;
   for (float z : {1.25f, 3.9f, 5.75f}) add_plane(soup, 16, 16, z);
-  const GridSpec grid = unit_grid({16, 16, 8});
+  const GridSpec grid = test::unit_grid({16, 16, 8});
   const VoxelGrid uniform_grid = run_slicemap(soup, grid, SlicemapSlicing::kUniform).grid;
   const SlicemapRun local_run = run_slicemap(soup, grid, SlicemapSlicing::kLocal);
   const Slicemap& local = local_run.map;
@@ -219,7 +206,7 @@ TEST(Slicemap, LocalContainsUniformOnATorus) {
   // Every fragment's local bit holds its own depth, so local's voxels contain uniform's; the extra voxels
   // are the neighbours of bits that straddle a voxel face (bits are W / B <= 1 voxel wide).
   const TriangleSoup soup = make_torus();
-  const GridSpec grid = fitted(soup, 64);
+  const GridSpec grid = test::fitted(soup, 64);
   const VoxelGrid uniform = run_slicemap(soup, grid, SlicemapSlicing::kUniform).grid;
   const VoxelGrid local = run_slicemap(soup, grid, SlicemapSlicing::kLocal).grid;
   uint64_t missing = 0, extra = 0;
@@ -239,7 +226,7 @@ TEST(Slicemap, WholeGridTriangleIsSplitIntoTiles) {
   TriangleSoup soup;
   soup.positions = {{-1, -1, 3.3f, 1}, {410, -1, 20.7f, 1}, {-1, 370, 41.1f, 1}};
   soup.triangles = {{0, 1, 2, 0}};
-  const GridSpec grid = unit_grid({200, 180, 50});
+  const GridSpec grid = test::unit_grid({200, 180, 50});
   for (SlicemapSlicing s : kBoth) {
     VoxelizeStats stats;
     expect_exact(soup, grid, s, "whole grid", VoxelizeOptions{}.record_budget_bytes, &stats);
@@ -250,7 +237,7 @@ TEST(Slicemap, WholeGridTriangleIsSplitIntoTiles) {
 
 TEST(Slicemap, BatchesGiveTheSameSlicemap) {
   const TriangleSoup soup = test::random_soup(24, 300, -1.0f, 1.0f, 0.6f);
-  const GridSpec grid = fitted(soup, 40);
+  const GridSpec grid = test::fitted(soup, 40);
   for (SlicemapSlicing s : kBoth) {
     VoxelizeStats stats;
     expect_exact(soup, grid, s, "batched", 64 * sizeof(SlicemapRecord), &stats);
@@ -268,7 +255,7 @@ TEST(Slicemap, SteepSheetLeavesOneVoxelPerColumn) {
                       glm::vec3(0, 16, 2)})
     soup.positions.push_back(glm::vec4(p, 1.0f));
   soup.triangles = {{base, base + 1, base + 2, 0}, {base, base + 2, base + 3, 0}};
-  const GridSpec grid = unit_grid({8, 16, 40});
+  const GridSpec grid = test::unit_grid({8, 16, 40});
   const VoxelGrid uniform = run_slicemap(soup, grid, SlicemapSlicing::kUniform).grid;
   Voxelizer slice(test::runtime());
   const VoxelGrid conservative = slice.run(soup, grid, VoxelizeOptions{});

@@ -37,19 +37,6 @@ class SolidRunner {
   Voxelizer voxelizer_{test::runtime()};
 };
 
-GridSpec fitted(const TriangleSoup& soup, uint32_t res) {
-  GridRequest r;
-  r.resolution = res;
-  return fit_grid(soup.bounds(), r);
-}
-
-// Voxel (i, j, k) = [i, i+1] x [j, j+1] x [k, k+1] in world units.
-GridSpec unit_grid(glm::uvec3 dims) {
-  GridSpec g;
-  g.dims = dims;
-  return g;
-}
-
 std::vector<uint32_t> bits_of(const GridSpec& grid, const std::vector<glm::uvec3>& voxels) {
   std::vector<uint32_t> bits(size_t((grid.voxel_count() + 31) / 32), 0u);
   for (const glm::uvec3& v : voxels) {
@@ -147,7 +134,7 @@ TEST(SolidFill, ParsesModeNames) {
 }
 
 TEST(SolidFill, CompareInsideCountsMissingAndExtra) {
-  const GridSpec grid = unit_grid({5, 4, 3});
+  const GridSpec grid = test::unit_grid({5, 4, 3});
   VoxelGrid g;
   g.spec = grid;
   const std::vector<uint32_t> inside = bits_of(grid, {{0, 0, 0}, {1, 0, 0}, {4, 3, 2}});
@@ -172,13 +159,13 @@ TEST(SolidFill, KernelsEqualTheirReferenceOnSmallMeshes) {
       // Open, self-intersecting, randomly oriented: odd columns everywhere, long repair chains.
       {"random soup", test::random_soup(7, 200, -1.0f, 1.0f, 0.4f)},
   };
-  for (const auto& [name, soup] : meshes) expect_kernels_equal_reference(soup, fitted(soup, 30), name);
+  for (const auto& [name, soup] : meshes) expect_kernels_equal_reference(soup, test::fitted(soup, 30), name);
 }
 
 TEST(SolidFill, KernelsEqualTheirReferenceAcrossWords) {
   // Rows of three words (x = 70), dims not multiples of 32: word carries of the x sweep and the repair.
   const TriangleSoup torus = make_torus();
-  expect_kernels_equal_reference(torus, fitted(torus, 70), "torus 70");
+  expect_kernels_equal_reference(torus, test::fitted(torus, 70), "torus 70");
   const TriangleSoup soup = test::random_soup(8, 150, -1.0f, 1.0f, 0.6f);
   GridRequest r;
   r.dims = glm::uvec3(70, 33, 21);
@@ -193,7 +180,7 @@ TEST(SolidFill, ParityEqualsExactInsideOnClosedMeshes) {
   SolidRunner solid;
   for (const auto& [name, soup] : meshes) {
     ASSERT_TRUE(closed(soup)) << name;
-    const GridSpec grid = fitted(soup, name == "bunny" ? 64 : 40);
+    const GridSpec grid = test::fitted(soup, name == "bunny" ? 64 : 40);
     const std::vector<uint32_t> exact = reference_inside_exact(soup, grid);
     EXPECT_GT(count_bits(exact), 100u) << name;
     const VoxelGrid parity = solid.run(soup, grid, SolidMode::kParity);
@@ -227,7 +214,7 @@ TEST(SolidFill, ParityEqualsExactInsideOnClosedMeshes) {
 TEST(SolidFill, ParityEqualsExactInsideOnRotatedAndCroppedGrids) {
   SolidRunner solid;
   const TriangleSoup torus = make_torus();
-  GridSpec rotated = fitted(torus, 36);
+  GridSpec rotated = test::fitted(torus, 36);
   const float c = std::cos(0.5f), s = std::sin(0.5f);
   rotated.axes = glm::mat3(glm::vec3(c, s, 0), glm::vec3(-s * 0.6f, c * 0.6f, 0.8f),
                            glm::vec3(s * 0.8f, -c * 0.8f, 0.6f));
@@ -281,7 +268,7 @@ TEST(SolidFill, XorJudgesVoxelsAtTheTopOfTheirSlab) {
   // Columns i, j = 2..5 (16 of them). Faces at z = 1.7 and 6.8 lie in the upper halves of slabs 1 and 6: the
   // centre rule gives k = 2..6, xor k = 1..5 (one layer extra at the bottom, one missing at the top). At
   // z = 1.3 and 6.2 (lower halves) both give k = 1..5.
-  const GridSpec grid = unit_grid({8, 8, 8});
+  const GridSpec grid = test::unit_grid({8, 8, 8});
   SolidRunner solid;
   const TriangleSoup high = make_box({2.2f, 2.2f, 1.7f}, {5.8f, 5.8f, 6.8f});
   const std::vector<uint32_t> high_exact = bits_of(grid, block({2, 2, 2}, {6, 6, 7}));
@@ -297,7 +284,7 @@ TEST(SolidFill, XorJudgesVoxelsAtTheTopOfTheirSlab) {
 
 TEST(SolidFill, FastWindingNumberEqualsTheDirectSum) {
   const TriangleSoup soup = sphere_with_holes();
-  const GridSpec grid = fitted(soup, 20);
+  const GridSpec grid = test::fitted(soup, 20);
   const std::vector<uint32_t> fast = reference_inside_winding(soup, grid);
   EXPECT_EQ(compare_bits(fast, reference_inside_winding_direct(soup, grid)).total(), 0u);
   EXPECT_GT(count_bits(fast), 2000u);
@@ -341,7 +328,7 @@ TEST(SolidFill, SphereWithSubVoxelHoles) {
   // Holes of one triangle each, narrower than a voxel at 24^3: the conservative surface stays closed.
   const TriangleSoup soup = sphere_with_holes();
   ASSERT_FALSE(closed(soup));
-  auto m = measure_holes(soup, fitted(soup, 24), "sphere, holes");
+  auto m = measure_holes(soup, test::fitted(soup, 24), "sphere, holes");
   // Flood: a closed interior; every error is a conservative surface voxel counted inside.
   EXPECT_EQ(m[SolidMode::kFlood].off_surface.total(), 0u);
   EXPECT_EQ(m[SolidMode::kFlood].all.missing, 0u);
@@ -362,7 +349,7 @@ TEST(SolidFill, SphereWithHolesLargerThanAVoxel) {
   // At 40^3 the same holes are wider than a voxel: the flood leaks in and loses the interior, while late
   // filling still repairs the odd columns.
   const TriangleSoup soup = sphere_with_holes();
-  auto m = measure_holes(soup, fitted(soup, 40), "sphere, holes");
+  auto m = measure_holes(soup, test::fitted(soup, 40), "sphere, holes");
   EXPECT_GT(m[SolidMode::kFlood].all.missing, m.reference / 2);
   EXPECT_LT(m[SolidMode::kLate].all.total(), 50u);
   EXPECT_GT(m[SolidMode::kParity].off_surface.missing, 200u);
@@ -376,7 +363,7 @@ TEST(SolidFill, SharkWithLargeHoles) {
   if (path.empty()) GTEST_SKIP() << "mech-holes-shark.off missing: run scripts/fetch-meshes.sh";
   const TriangleSoup soup = load_mesh(path);
   ASSERT_FALSE(closed(soup));
-  const GridSpec grid = fitted(soup, 32);
+  const GridSpec grid = test::fitted(soup, 32);
   auto m = measure_holes(soup, grid, "mech-holes-shark");
   EXPECT_GT(m[SolidMode::kFlood].all.missing, m.reference * 3 / 4);
   EXPECT_GT(m[SolidMode::kLate].stats.questionable_columns, 10u);
@@ -387,7 +374,7 @@ TEST(SolidFill, SharkWithLargeHoles) {
 
 TEST(SolidFill, StatsAndRepeatability) {
   const TriangleSoup soup = test::random_soup(9, 120, -1.0f, 1.0f, 0.5f);
-  const GridSpec grid = fitted(soup, 24);
+  const GridSpec grid = test::fitted(soup, 24);
   SolidRunner solid;
   for (SolidMode mode : kModes) {
     VoxelizeStats a, b;

@@ -80,6 +80,18 @@ TriangleSoup random_soup(uint32_t seed, size_t count, float lo, float hi, float 
   return soup;
 }
 
+GridSpec fitted(const TriangleSoup& soup, uint32_t res) {
+  GridRequest r;
+  r.resolution = res;
+  return fit_grid(soup.bounds(), r);
+}
+
+GridSpec unit_grid(glm::uvec3 dims) {
+  GridSpec g;
+  g.dims = dims;
+  return g;
+}
+
 TriangleSoup box_soup(glm::vec3 lo, glm::vec3 hi, uint32_t material) {
   TriangleSoup s;
   for (int c = 0; c < 8; ++c)

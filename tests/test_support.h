@@ -14,6 +14,7 @@
 #include <string>
 
 #include "cl/cl_runtime.h"
+#include "core/grid_spec.h"
 #include "core/triangle_soup.h"
 #include "grid/voxel_grid.h"
 
@@ -29,6 +30,12 @@ std::string compare_grids(const VoxelGrid& expected, const VoxelGrid& actual, fl
 
 // `count` triangles with vertices uniform in [lo, hi]^3 and edge lengths up to `max_edge`.
 TriangleSoup random_soup(uint32_t seed, size_t count, float lo, float hi, float max_edge);
+
+// The grid `voxr voxelize --res res` fits to the soup.
+GridSpec fitted(const TriangleSoup& soup, uint32_t res);
+
+// Grid units = world units: voxel (i, j, k) is [i, i+1] x [j, j+1] x [k, k+1].
+GridSpec unit_grid(glm::uvec3 dims);
 
 // Axis-aligned box as 12 triangles (outward winding).
 TriangleSoup box_soup(glm::vec3 lo, glm::vec3 hi, uint32_t material = 0);

@@ -22,12 +22,6 @@
 namespace voxr {
 namespace {
 
-GridSpec fitted(const TriangleSoup& soup, uint32_t res) {
-  GridRequest r;
-  r.resolution = res;
-  return fit_grid(soup.bounds(), r);
-}
-
 // Small and large triangles together: the hybrid method's direct pass and its slice path both run.
 TriangleSoup mixed_soup() {
   TriangleSoup soup = test::random_soup(31, 300, -1.0f, 1.0f, 0.08f);
@@ -51,7 +45,7 @@ std::vector<ChannelSet> every_channel_subset() {
 
 TEST(Voxelizer, EveryMethodModeAndChannelSubsetEqualsTheReference) {
   const TriangleSoup soup = mixed_soup();
-  const GridSpec grid = fitted(soup, 40);
+  const GridSpec grid = test::fitted(soup, 40);
   Voxelizer voxelizer(test::runtime());
   for (VoxelizeMethod method : {VoxelizeMethod::kHybrid, VoxelizeMethod::kSlice, VoxelizeMethod::kGrid})
     for (RasterMode mode : {RasterMode::kConservative, RasterMode::kCenter})
@@ -80,7 +74,7 @@ TEST(Voxelizer, SurfaceChannelsAndSolidFillInOneCall) {
   // inside channel equals a solid-only run, on one upload.
   TriangleSoup soup = make_torus();
   soup.append(make_box(glm::vec3(-0.3f), glm::vec3(0.3f)), glm::mat4(1.0f), 2);
-  const GridSpec grid = fitted(soup, 48);
+  const GridSpec grid = test::fitted(soup, 48);
   Voxelizer voxelizer(test::runtime());
   VoxelizeOptions both;
   both.channels = ChannelSet::parse("occ,count,normal,material");
@@ -110,7 +104,7 @@ TEST(Voxelizer, TheGridStaysOnTheDeviceFrameAfterFrame) {
   VoxelizeOptions options;
   options.channels = ChannelSet::parse("occ,count,normal,material");
   voxelizer.prepare(options);
-  const GridSpec big = fitted(soup, 56), small = fitted(soup, 24);
+  const GridSpec big = test::fitted(soup, 56), small = test::fitted(soup, 24);
   const DeviceMesh mesh = upload_mesh(cl, soup, big, SplitCull::kGrid);
   DeviceVoxelGrid frame;
   for (const GridSpec* grid : {&big, &small, &big}) {
@@ -205,7 +199,7 @@ TEST(Voxelizer, ConservativeIsASupersetOfTheExactSetOnRotatedMeshes) {
   uint64_t exact_total = 0, extra_total = 0;
   for (const auto& [name, soup] : meshes)
     for (int r = 0; r < 6; ++r) {
-      GridSpec grid = fitted(soup, 96);
+      GridSpec grid = test::fitted(soup, 96);
       grid.axes = random_rotation(rng);
       // Re-centre the rotated grid on the mesh.
       const glm::vec3 centre = 0.5f * (soup.bounds().lo + soup.bounds().hi);
