@@ -1,6 +1,5 @@
 #include "cl/cl_runtime.h"
 
-#include <chrono>
 #include <cstdlib>
 #include <fstream>
 #include <optional>
@@ -8,6 +7,7 @@
 #include <sstream>
 
 #include "cl/embedded_kernels.h"
+#include "core/clock.h"
 
 namespace voxr {
 
@@ -84,7 +84,7 @@ cl::Program& ClRuntime::program(const std::string& file, const Defines& defines)
   const std::string memo_key = file + "|" + options;
   if (auto it = programs_.find(memo_key); it != programs_.end()) return it->second;
 
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   std::set<std::string> seen;
   const std::string source = expand_includes(
       load_source(file), [this](const std::string& f) { return load_source(f); }, seen);
@@ -109,7 +109,7 @@ cl::Program& ClRuntime::program(const std::string& file, const Defines& defines)
       // Drivers that cannot return binaries simply build from source every time.
     }
   }
-  build_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  build_ms_ += ms_since(start);
   return programs_.emplace(memo_key, std::move(*program)).first->second;
 }
 

@@ -5,7 +5,6 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +14,7 @@
 #include "bench/voxelize_cases.h"
 #include "cl/cl_runtime.h"
 #include "cli/process.h"
+#include "core/clock.h"
 #include "io/volume_writer.h"
 #include "voxelize/voxelizer.h"
 

@@ -9,7 +9,6 @@
 #include <nlohmann/json.hpp>
 
 #include <cctype>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +19,7 @@
 #include "cli/commands.h"
 #include "cli/parse_args.h"
 #include "cli/process.h"
+#include "core/clock.h"
 #include "core/default_scene.h"
 #include "core/mesh_topology.h"
 #include "core/scene.h"

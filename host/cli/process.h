@@ -1,19 +1,11 @@
-// Small helpers the subcommands share: the wall clock, and starting a program and waiting for it.
+// Small helpers the subcommands share: finding the executable, starting a program and waiting for it.
 #pragma once
 
-#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 namespace voxr::cli {
-
-using Clock = std::chrono::steady_clock;
-
-// Milliseconds since `start` on the steady clock.
-inline double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // The running executable, and its folder (voxr-view and the OpenVDB plugin live beside it); empty if unknown.
 std::filesystem::path executable_path();

@@ -4,10 +4,11 @@
 #include <openvdb/tools/MeshToVolume.h>
 
 #include <bit>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
+
+#include "core/clock.h"
 
 extern "C" bool voxr_openvdb_mesh_to_volume(const voxr::TriangleSoup* soup, const voxr::GridSpec* grid,
                                             const float* m, voxr::VoxelGrid* out, double* ms, char* error,
@@ -29,10 +30,10 @@ extern "C" bool voxr_openvdb_mesh_to_volume(const voxr::TriangleSoup* soup, cons
     const std::vector<openvdb::Vec4I> quads;
     const openvdb::math::Transform::Ptr xform = openvdb::math::Transform::createLinearTransform(1.0);
 
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = voxr::Clock::now();
     const openvdb::FloatGrid::Ptr udf = openvdb::tools::meshToUnsignedDistanceField<openvdb::FloatGrid>(
         *xform, points, triangles, quads, 1.0f);
-    *ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    *ms = voxr::ms_since(start);
 
     *out = voxr::VoxelGrid{};
     out->spec = *grid;

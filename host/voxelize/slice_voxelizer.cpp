@@ -17,6 +17,12 @@ Defines base_defines(const VoxelizeOptions& options) {
   return d;
 }
 
+// Count and normal accumulate packed, two 64-bit words per voxel (vox_scanline.h), then vox_finalize.cl
+// unpacks them.
+bool packed_sums(const ChannelSet& channels) {
+  return channels.has(Channel::kCount) || channels.has(Channel::kNormal);
+}
+
 }  // namespace
 
 SliceVoxelizer::SliceVoxelizer(ClRuntime& cl, VoxelizeMethod method)
@@ -37,8 +43,7 @@ std::vector<ProgramSpec> SliceVoxelizer::programs(const VoxelizeOptions& options
     specs.push_back({grid ? "vox_grid.cl" : "vox_raster.cl", p});
   }
   if (!grid) specs.push_back({"vox_expand.cl", base});
-  if (options.channels.has(Channel::kCount) || options.channels.has(Channel::kNormal))
-    specs.push_back({"vox_finalize.cl", base});
+  if (packed_sums(options.channels)) specs.push_back({"vox_finalize.cl", base});
   return specs;
 }
 
@@ -52,15 +57,15 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
   const uint64_t tris = mesh.triangle_count();
   const Defines base = base_defines(options);
   const uint32_t channels = options.channels.bits;
+  const bool packed = packed_sums(options.channels);
   uint64_t scratch_bytes = 0;
   auto scratch = [&](const std::string& what, uint64_t bytes) {
     scratch_bytes += bytes;
     return scratch_.get(what, bytes);
   };
 
-  // Count and normal sums accumulate packed in two 64-bit words per voxel (vox_scanline.h): refuse what they
-  // cannot hold before any work.
-  if (options.channels.has(Channel::kCount) || options.channels.has(Channel::kNormal)) {
+  // Refuse what the packed count/normal sums cannot hold before any work.
+  if (packed) {
     if (tris > VOXR_MAX_ATTRIBUTE_TRIANGLES)
       fail(
           "{} triangles are more than the {} the packed count/normal sums hold exactly; drop count,normal or "
@@ -147,7 +152,6 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     build_rank_index(cl_, out);
     const uint64_t set = out.voxels_set;
     if (set > 0xffffffffull) fail("{} set voxels exceed the 2^32 limit of the attribute channels", set);
-    const bool packed = options.channels.has(Channel::kCount) || options.channels.has(Channel::kNormal);
     cl::Buffer acc = dummy;
     if (packed) {
       acc = scratch("the count/normal accumulators", set * 16);

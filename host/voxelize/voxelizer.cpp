@@ -1,5 +1,6 @@
 #include "voxelize/voxelizer.h"
 
+#include "core/clock.h"
 #include "voxelize/slice_voxelizer.h"
 #include "voxelize/slicemap_voxelizer.h"
 #include "voxelize/solid_fill.h"
@@ -35,8 +36,7 @@ std::unique_ptr<SurfaceVoxelizer> make_surface_voxelizer(ClRuntime& cl, Voxelize
 
 void VoxelizeOptions::validate() const {
   const MethodInfo& info = method_info(method);
-  ChannelSet surface = channels;
-  surface.remove(Channel::kInside);
+  const ChannelSet surface = surface_only().channels;
   if (!info.attributes && surface.sparse())
     fail("--method {} produces the occ channel only (asked for {})", info.name, surface.to_string());
   if (!info.modes && mode != RasterMode::kConservative)
@@ -44,6 +44,12 @@ void VoxelizeOptions::validate() const {
   if (channels.has(Channel::kInside) && !solid)
     fail("the inside channel comes from solid voxelization: add --solid xor|late|parity|flood");
   if (rows_per_copy == 0) fail("rows per copy must be at least 1");
+}
+
+VoxelizeOptions VoxelizeOptions::surface_only() const {
+  VoxelizeOptions surface = *this;
+  surface.channels.remove(Channel::kInside);
+  return surface;
 }
 
 ChannelSet VoxelizeOptions::result_channels() const {
@@ -61,34 +67,31 @@ SurfaceVoxelizer& Voxelizer::surface(VoxelizeMethod method) {
   return *slot;
 }
 
+SolidFill& Voxelizer::solid() {
+  if (!solid_) solid_ = std::make_unique<SolidFill>(cl_);
+  return *solid_;
+}
+
 void Voxelizer::prepare(const VoxelizeOptions& options) {
   options.validate();
-  VoxelizeOptions surface_options = options;
-  surface_options.channels.remove(Channel::kInside);
-  cl_.build_programs(surface(options.method).programs(surface_options));
-  if (options.solid) {
-    if (!solid_) solid_ = std::make_unique<SolidFill>(cl_);
-    cl_.build_programs(solid_->programs(*options.solid));
-  }
+  cl_.build_programs(surface(options.method).programs(options.surface_only()));
+  if (options.solid) cl_.build_programs(solid().programs(*options.solid));
 }
 
 void Voxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
                     DeviceVoxelGrid& out, VoxelizeStats* stats) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   options.validate();
   cl_.finish();
   const auto before = cl_.profiler().stats();
-  VoxelizeOptions surface_options = options;
-  surface_options.channels.remove(Channel::kInside);
   out.reset(grid, options.result_channels());
   VoxelizeStats local;
-  surface(options.method).run(mesh, grid, surface_options, out, local);
+  surface(options.method).run(mesh, grid, options.surface_only(), out, local);
   if (options.solid) {
     if (options.progress) options.progress("solid");
-    if (!solid_) solid_ = std::make_unique<SolidFill>(cl_);
     const bool conservative_surface =
         options.mode == RasterMode::kConservative && method_info(options.method).modes;
-    solid_->run(mesh, grid, *options.solid, conservative_surface, out, local);
+    solid().run(mesh, grid, *options.solid, conservative_surface, out, local);
   }
   cl_.finish("voxelizing");
   local.voxels_set = out.voxels_set;
@@ -99,13 +102,13 @@ void Voxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Voxelize
   local.kernels_ms = split.kernels_ms;
   local.stage_ms = split.stage_ms;
   local.readback_ms = split.readback_ms;  // the small counts read between stages
-  local.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  local.wall_ms = ms_since(start);
   if (stats) *stats = local;
 }
 
 VoxelGrid Voxelizer::run(const TriangleSoup& soup, const GridSpec& grid, const VoxelizeOptions& options,
                          VoxelizeStats* stats, const Bounds* bounds) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   options.validate();
   if (options.progress) options.progress("upload");
   const DeviceMesh mesh =
@@ -140,7 +143,7 @@ VoxelGrid Voxelizer::run(const TriangleSoup& soup, const GridSpec& grid, const V
   local.voxels_set = result.voxels_set;
   local.upload_ms = mesh.upload_ms();
   local.readback_ms += cl_.profiler().since(before).readback_ms;
-  local.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  local.wall_ms = ms_since(start);
   if (stats) *stats = local;
   return result;
 }

@@ -18,7 +18,6 @@
 #pragma once
 
 #include <array>
-#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -79,6 +78,8 @@ struct VoxelizeOptions {
   // Throws voxr::Error explaining a combination the method cannot produce (slicemap with count/normal/
   // material or with a mode, inside without solid, rows_per_copy 0).
   void validate() const;
+  // These options without the inside channel: what the surface voxelizer is asked for.
+  VoxelizeOptions surface_only() const;
   // The channels a run produces: `channels`, plus inside with `solid`.
   ChannelSet result_channels() const;
 };
@@ -148,6 +149,8 @@ class Voxelizer {
   SurfaceVoxelizer& surface(VoxelizeMethod method);
 
  private:
+  SolidFill& solid();  // made on first use
+
   ClRuntime& cl_;
   std::map<VoxelizeMethod, std::unique_ptr<SurfaceVoxelizer>> surfaces_;
   std::unique_ptr<SolidFill> solid_;
