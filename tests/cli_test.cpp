@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -282,19 +283,68 @@ TEST(Cli, SolidKeepsCrossingsOfSplitTrianglesOutsideTheGrid) {
             inside_voxels(top + " --solid parity", "parity-top"));
 }
 
+// Voxels set in a .binvox file (its run-length pairs of value, count after the "data" line).
+uint64_t binvox_voxels_set(const fs::path& path) {
+  const std::string data = slurp(path);
+  const size_t start = data.find("data\n") + 5;
+  uint64_t set = 0;
+  for (size_t p = start; p + 1 < data.size(); p += 2) set += data[p] ? uint8_t(data[p + 1]) : 0;
+  return set;
+}
+
 TEST(Cli, SolidBinvoxHoldsTheSolid) {
   const fs::path cube = write_file("cube2.obj", kCube);
   const fs::path out = scratch() / "solid.binvox";
   const uint64_t inside = inside_voxels(
       "voxelize " + cube.string() + " --dims 16,16,16 --solid parity -o " + out.string(), "binvox");
-  const std::string data = slurp(out);
-  const size_t start = data.find("data\n") + 5;
-  uint64_t set = 0;
-  for (size_t p = start; p + 1 < data.size(); p += 2) set += data[p] ? uint8_t(data[p + 1]) : 0;
+  const uint64_t set = binvox_voxels_set(out);
   // The single-set format holds the solid: surface and interior. The cube fills the fitted grid (its faces
   // lie in the border voxels, whose centres the parity rule puts inside on the low sides), so all 16^3.
   EXPECT_EQ(inside, 15u * 15u * 15u);
   EXPECT_EQ(set, 16u * 16u * 16u);
+}
+
+// A closed box [0,x]x[0,y]x[z0,z0+depth] as OFF, corners listed as in the shared failing cases.
+std::string box_off(double x, double y, double z0, double depth) {
+  std::ostringstream off;
+  off.precision(17);
+  off << "OFF\n8 12 0\n";
+  for (double z : {z0, z0 + depth})
+    off << "0 0 " << z << "\n"
+        << x << " 0 " << z << "\n"
+        << x << " " << y << " " << z << "\n0 " << y << " " << z << "\n";
+  off << "3 0 3 2\n3 0 2 1\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n3 2 3 7\n3 2 7 6\n3 0 4 7\n3 0 7 3\n"
+         "3 1 2 6\n3 1 6 5\n";
+  return off.str();
+}
+
+TEST(Cli, SolidBinvoxOfAUnitCubeIsTheWholeGrid) {
+  // Case c02: a unit cube at --res 8 fills its fitted 8^3 grid, surface and interior alike.
+  const fs::path cube = write_file("unit-cube.off", box_off(1, 1, 0, 1));
+  const fs::path out = scratch() / "unit-cube.binvox";
+  inside_voxels("voxelize " + cube.string() + " --res 8 --solid parity -o " + out.string(), "unit-cube");
+  EXPECT_EQ(binvox_voxels_set(out), 512u);
+}
+
+TEST(Cli, SolidOfAPlateThinnerThanAVoxelKeepsItsSurface) {
+  // Case c08: a 10x10 plate 1/31.5 thick has no voxel centre inside, so the solid is its surface: the
+  // 64x64x2 voxels it touches, in the single-set .vox and in the occupancy .nrrd alike (never empty).
+  const fs::path plate = write_file("plate.off", box_off(10, 10, 3, 2.0 / 63.0));
+  const fs::path vox = scratch() / "plate.vox", nrrd = scratch() / "plate.nrrd";
+  for (const fs::path& out : {vox, nrrd})
+    EXPECT_EQ(
+        inside_voxels("voxelize " + plate.string() + " --res 64 --solid parity -o " + out.string(), "plate"),
+        0u);
+  const std::string v = slurp(vox);
+  const size_t xyzi = v.find("XYZI");
+  ASSERT_NE(xyzi, std::string::npos);
+  uint32_t vox_voxels = 0;
+  std::memcpy(&vox_voxels, v.data() + xyzi + 12, 4);
+  EXPECT_EQ(vox_voxels, 8192u);
+  const std::string n = slurp(nrrd);
+  const size_t data = n.find("\n\n") + 2;
+  ASSERT_EQ(n.size() - data, 64u * 64u * 2u);
+  EXPECT_EQ(uint64_t(std::count_if(n.begin() + data, n.end(), [](char c) { return c != 0; })), 8192u);
 }
 
 TEST(Cli, HugeDeviceIndexIsNotACrash) {
