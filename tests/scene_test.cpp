@@ -114,7 +114,7 @@ TEST(Scene, LoadsEverySection) {
   ASSERT_TRUE(s.grid.dims.has_value());
   EXPECT_EQ(*s.grid.dims, glm::uvec3(64, 32, 16));
   ASSERT_TRUE(s.grid.bounds.has_value());
-  EXPECT_EQ(s.grid.bounds->lo, glm::vec3(-2.0f));
+  EXPECT_EQ(s.grid.bounds->lo, glm::dvec3(-2.0));
   EXPECT_EQ(s.grid.margin_voxels, 1.0f);
 
   const TriangleSoup world = scene_triangles(s);
@@ -254,7 +254,8 @@ TEST(Scene, TransformScalesThenRotatesXYZThenTranslates) {
       "transform": {"scale": [2, 1, 1], "rotate_deg": [0, 0, 90], "translate": [10, 0, 0]}}]})",
                   "s.json", ".");
   const TriangleSoup world = scene_triangles(s);
-  expect_near(glm::vec3(world.positions[1]), glm::vec3(10, 2, 0));  // box corner 1 is (1,0,0)
+  // Box corner 1 is (1,0,0); positions are relative to the scene's anchor.
+  expect_near(glm::vec3(world.anchor + glm::dvec3(glm::vec3(world.positions[1]))), glm::vec3(10, 2, 0));
   EXPECT_NEAR(signed_volume(world), 2.0, 1e-5);
 }
 

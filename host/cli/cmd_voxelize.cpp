@@ -111,7 +111,8 @@ nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const 
       {"direct_triangles", stats.direct_triangles},
       {"dims", {grid.dims.x, grid.dims.y, grid.dims.z}},
       {"voxel_size", grid.voxel_size},
-      {"origin", {grid.origin.x, grid.origin.y, grid.origin.z}},
+      {"origin",
+       {grid.anchor.x + grid.origin.x, grid.anchor.y + grid.origin.y, grid.anchor.z + grid.origin.z}},
       {"margin", stats.margin},
       {"copies", stats.copies},
       {"batches", stats.batches},
@@ -183,7 +184,10 @@ int run_voxelize(const VoxelizeArgs& args) {
   auto load_start = Clock::now();
   if (tty) fmt::print(stderr, "\rreading {}...", args.input.empty() ? "the default scene" : args.input);
   const Scene scene = args.input.empty() ? default_scene() : load_input(args.input);
-  const TriangleSoup soup = scene_triangles(scene);
+  const char* cr = tty ? "\r" : "";
+  for (const MeshInstance& m : scene.meshes)
+    for (const std::string& w : m.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
+  TriangleSoup soup = scene_triangles(scene);
   const size_t degenerate = validate_soup(soup, scene.source);
   const Bounds bounds = soup.bounds();
 
@@ -195,21 +199,29 @@ int run_voxelize(const VoxelizeArgs& args) {
   if (!args.dims.empty()) request.dims = parse_dims(args.dims, "--dims");
   if (!args.bounds.empty()) request.bounds = parse_bounds(args.bounds, "--bounds");
   fit_request_to_format(request, args.output);
-  const GridSpec grid = fit_grid(bounds, request);
+  const GridSpec grid = fit_grid(bounds, request, soup.anchor);
   if (!args.output.empty()) check_volume_output(args.output, grid.dims);
 
   bool refit = false;
-  if (options.solid == SolidMode::kParity || options.solid == SolidMode::kXor) {
-    const MeshTopology topology = mesh_topology(soup);
-    if (!topology.closed()) {
+  if (options.solid) {
+    // Closure is judged on welded positions; a triangle listed twice would flip every column parity
+    // through it, and the winding-number definition of inside ignores the copy, so copies go.
+    MeshTopology topology = mesh_topology(soup);
+    if (topology.duplicates > 0) {
+      drop_duplicate_triangles(soup);
+      fmt::print(stderr,
+                 "{}voxr: warning: {}: {} triangles repeat an earlier triangle exactly; the copies were "
+                 "dropped\n",
+                 cr, scene.source, topology.duplicates);
+    }
+    if (!topology.closed() && (options.solid == SolidMode::kParity || options.solid == SolidMode::kXor)) {
       // Column parity needs a closed surface. Late filling repairs the columns that cross a hole from their
       // neighbours: on the holed test meshes it stays within a few voxels of the winding-number reference,
       // where flood fill loses the interior once a hole is wider than a voxel (bench/results/solid-*).
-      fmt::print(
-          stderr,
-          "{}voxr: warning: {} is not closed ({} boundary and {} non-manifold edges); --solid {} would leak "
-          "through the holes, using --solid late\n",
-          tty ? "\r" : "", scene.source, topology.boundary, topology.nonmanifold, args.solid);
+      fmt::print(stderr,
+                 "{}voxr: warning: {} is not closed ({}); --solid {} would leak through the holes, "
+                 "using --solid late\n",
+                 cr, scene.source, topology.describe(soup.anchor), args.solid);
       options.solid = SolidMode::kLate;
       refit = true;
     }

@@ -39,11 +39,9 @@ glm::uvec3 parse_dims(const std::string& text, const std::string& flag) {
   return dims;
 }
 
-Bounds parse_bounds(const std::string& text, const std::string& flag) {
+WorldBox parse_bounds(const std::string& text, const std::string& flag) {
   const std::vector<double> v = parse_numbers(text, 6, flag);
-  Bounds b;
-  b.lo = glm::vec3(v[0], v[1], v[2]);
-  b.hi = glm::vec3(v[3], v[4], v[5]);
+  const WorldBox b(glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5]));
   for (int a = 0; a < 3; ++a)
     if (!(b.lo[a] < b.hi[a]))
       fail("{} '{}': the low corner must be below the high corner on every axis", flag, text);

@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "core/triangle_soup.h"
+#include "core/grid_spec.h"
 
 namespace voxr::cli {
 
 std::vector<double> parse_numbers(const std::string& text, size_t count, const std::string& flag);
 glm::uvec3 parse_dims(const std::string& text, const std::string& flag);
-Bounds parse_bounds(const std::string& text, const std::string& flag);
+WorldBox parse_bounds(const std::string& text, const std::string& flag);
 
 }  // namespace voxr::cli

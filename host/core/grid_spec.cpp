@@ -29,6 +29,10 @@ glm::vec3 GridSpec::voxel_center_world(uint32_t i, uint32_t j, uint32_t k) const
   return origin + axes * (glm::vec3(i, j, k) + 0.5f) * voxel_size;
 }
 
+glm::dvec3 GridSpec::voxel_center_absolute(uint32_t i, uint32_t j, uint32_t k) const {
+  return anchor + glm::dvec3(origin) + glm::dmat3(axes) * (glm::dvec3(i, j, k) + 0.5) * double(voxel_size);
+}
+
 namespace {
 
 void check_dims(const glm::uvec3& dims) {
@@ -39,13 +43,44 @@ void check_dims(const glm::uvec3& dims) {
 
 }  // namespace
 
-GridSpec fit_grid(const Bounds& scene_bounds, const GridRequest& request) {
+namespace {
+
+// Distance of `x` (in voxels) from the nearest voxel face or voxel centre.
+double tie_distance(double x) {
+  const double r = x - 0.5 * std::floor(2.0 * x);  // x modulo half a voxel
+  return std::min(r, 0.5 - r);
+}
+
+// Offset, in voxels, of the low face of bounds `extent` voxels long in an axis of `slack` + extent voxels:
+// centred when both faces then keep 1/8 voxel from ties, else the offset nearest the centre whose faces
+// keep the most (faces x and x + extent, taken modulo half a voxel, straddle the tie point symmetrically).
+double low_face_offset(double extent, double slack) {
+  const double centred = 0.5 * slack;
+  if (std::min(tie_distance(centred), tie_distance(centred + extent)) >= 0.125) return centred;
+  const double g = std::fmod(extent, 0.5);
+  const double best = g >= 0.25 ? 0.5 - 0.5 * g : 0.25 - 0.5 * g;  // modulo 0.5
+  double offset = centred;
+  for (double x = best; x <= slack; x += 0.5)
+    if (offset == centred || std::abs(x - centred) < std::abs(offset - centred)) offset = x;
+  return offset;
+}
+
+}  // namespace
+
+GridSpec fit_grid(const Bounds& scene_bounds, const GridRequest& request, const glm::dvec3& anchor) {
   if (!request.dims && (request.resolution == 0 || request.resolution > kMaxGridDim))
     fail("--res {} is out of range (1..{})", request.resolution, kMaxGridDim);
   if (request.dims) check_dims(*request.dims);
 
   const bool exact_bounds = request.bounds.has_value();
-  const Bounds b = exact_bounds ? *request.bounds : scene_bounds;
+  Bounds b = scene_bounds;
+  if (exact_bounds) {
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(request.bounds->lo[a]) || !std::isfinite(request.bounds->hi[a]))
+        fail("the grid bounds are not finite");
+    b.lo = glm::vec3(request.bounds->lo - anchor);
+    b.hi = glm::vec3(request.bounds->hi - anchor);
+  }
   if (b.empty()) fail("the grid bounds are empty");
   for (int a = 0; a < 3; ++a)
     if (!std::isfinite(b.lo[a]) || !std::isfinite(b.hi[a])) fail("the grid bounds are not finite");
@@ -53,9 +88,9 @@ GridSpec fit_grid(const Bounds& scene_bounds, const GridRequest& request) {
   const float longest = std::max({extent.x, extent.y, extent.z});
   if (!(longest > 0.0f)) fail("the scene bounds are a single point; give --bounds explicitly");
 
-  // Fitted bounds get `margin` voxels on each side so that surfaces on the bounds are not cut.
   const float margin = exact_bounds ? 0.0f : request.margin_voxels;
   GridSpec g;
+  g.anchor = anchor;
   if (request.dims) {
     float h = 0.0f;
     for (int a = 0; a < 3; ++a) {
@@ -75,9 +110,15 @@ GridSpec fit_grid(const Bounds& scene_bounds, const GridRequest& request) {
   }
   if (!(g.voxel_size > 0.0f) || !std::isfinite(g.voxel_size)) fail("cannot fit a grid to the bounds");
   check_dims(g.dims);
-  // Exact bounds start at their corner; fitted grids are centred on the scene.
-  const glm::vec3 span = glm::vec3(g.dims) * g.voxel_size;
-  g.origin = exact_bounds ? b.lo : 0.5f * (b.lo + b.hi) - 0.5f * span;
+  if (exact_bounds) {
+    g.origin = b.lo;  // exact bounds start at their corner
+  } else {
+    for (int a = 0; a < 3; ++a) {
+      const double cells = double(extent[a]) / g.voxel_size;
+      const double slack = std::max(0.0, double(g.dims[a]) - cells);
+      g.origin[a] = float(double(b.lo[a]) - low_face_offset(cells, slack) * g.voxel_size);
+    }
+  }
   return g;
 }
 

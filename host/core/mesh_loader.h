@@ -1,29 +1,31 @@
-// Mesh files -> triangle soup. OBJ, PLY and STL are parsed by OpenMesh's readers (after a strict check of the
-// file, see mesh_loader.cpp), ASCII OFF by voxr itself; polygons are fan-triangulated and every triangle gets
-// material id 0.
+// Mesh files -> triangle soup. OFF, OBJ, PLY and STL are read by voxr's own readers (mesh/mesh_readers.h),
+// in double precision; glTF, FBX, Collada and 3MF through Assimp (mesh/assimp_reader.h). Polygons are
+// triangulated exactly (mesh/polygon_triangulation.h); every triangle gets material id 0.
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "core/triangle_soup.h"
 
 namespace voxr {
 
-// Extensions load_mesh accepts (lower case, with the dot).
-inline constexpr const char* kMeshExtensions[] = {".obj", ".off", ".ply", ".stl"};
-
-// True when `file`'s extension (any case) is one of kMeshExtensions.
+// True when `file`'s extension (any case) is one load_mesh reads.
 bool is_mesh_file(const std::filesystem::path& file);
 
-// Reads `file` into a soup. Vertex indices are kept as the file gives them, so a watertight file gives a
-// watertight soup (faces OpenMesh's half-edge mesh would reject as non-manifold are kept as they are);
-// STL, which has no shared vertices, has identical corners merged by OpenMesh's reader.
+// The extensions load_mesh reads, lower case with the dot, comma-separated (for messages and --help).
+std::string mesh_extensions();
+
+// Reads `file` into a soup whose positions are relative to an anchor chosen for the mesh's place
+// (triangle_soup.h: a mesh a million units from the origin keeps its precision). Vertex indices are kept as
+// the file gives them (STL corners are merged by position). Messages about what was read but is suspect
+// (non-planar or self-crossing polygons, faces of fewer than 3 corners, ignored trailing bytes) are appended
+// to `warnings` when given, one line each, starting with the file path.
 // Throws voxr::Error whose message starts with the file path when the file is missing or unreadable, has an
-// unsupported extension, cannot be parsed (naming the line for text formats), is truncated, refers to
-// vertices it does not have, holds no triangles or has a vertex that is NaN, infinite or beyond float range.
-// Binary OFF and n-dimensional OFF are not supported. OpenMesh's own diagnostics are silenced, never
-// printed. Safe to call from several threads (OpenMesh reads are serialised: its diagnostic streams are
-// global).
-TriangleSoup load_mesh(const std::filesystem::path& file);
+// unsupported extension, cannot be parsed (naming the line, or the element and property), is truncated,
+// refers to vertices it does not have, holds no triangles or has a vertex that is NaN or infinite.
+// Safe to call from several threads.
+TriangleSoup load_mesh(const std::filesystem::path& file, std::vector<std::string>* warnings = nullptr);
 
 }  // namespace voxr

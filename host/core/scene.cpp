@@ -179,7 +179,7 @@ MeshInstance parse_mesh(const json& value, const std::string& where, const std::
     const std::filesystem::path file = resolve_mesh_path(in, in.string("file"), base_dir);
     mesh.source = file.string();
     try {
-      mesh.soup = load_mesh(file);
+      mesh.soup = load_mesh(file, &mesh.warnings);
     } catch (const Error& e) {
       in.fail_key("file", fmt::format("could not be loaded: {}", e.what()));
     }
@@ -440,19 +440,42 @@ Scene load_input(const std::filesystem::path& input) {
   scene.materials.push_back(Material{"default", MaterialKind::kOpaque});
   MeshInstance mesh;
   mesh.source = input.string();
-  mesh.soup = load_mesh(input);
+  mesh.soup = load_mesh(input, &mesh.warnings);
   scene.meshes.push_back(std::move(mesh));
   apply_defaults(scene, false, false, false);
   return scene;
 }
 
+namespace {
+
+// World bounds of an instance, in double: the transformed corners of its soup's bounds.
+void extend_world(const MeshInstance& m, glm::dvec3& lo, glm::dvec3& hi) {
+  const Bounds b = m.soup.bounds();
+  if (b.empty()) return;
+  const glm::dmat4 t(m.transform);
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 p =
+        m.soup.anchor + glm::dvec3(c & 1 ? b.hi.x : b.lo.x, c & 2 ? b.hi.y : b.lo.y, c & 4 ? b.hi.z : b.lo.z);
+    const glm::dvec4 q = t * glm::dvec4(p, 1.0);
+    lo = glm::min(lo, glm::dvec3(q) / q.w);
+    hi = glm::max(hi, glm::dvec3(q) / q.w);
+  }
+}
+
+}  // namespace
+
 TriangleSoup scene_triangles(const Scene& scene) {
   TriangleSoup out;
   size_t vertices = 0, triangles = 0;
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   for (const MeshInstance& m : scene.meshes) {
     vertices += m.soup.positions.size();
     triangles += m.soup.triangles.size();
+    extend_world(m, lo, hi);
   }
+  // One mesh placed as it is keeps its own anchor (and its positions bit for bit).
+  const bool as_is = scene.meshes.size() == 1 && scene.meshes[0].transform == glm::mat4(1.0f);
+  out.anchor = as_is ? scene.meshes[0].soup.anchor : lo.x <= hi.x ? choose_anchor(lo, hi) : glm::dvec3(0.0);
   out.positions.reserve(vertices);
   out.triangles.reserve(triangles);
   for (const MeshInstance& m : scene.meshes) {
@@ -472,8 +495,9 @@ Bounds scene_bounds(const Scene& scene) {
     for (const glm::uvec4& t : m.soup.triangles) used[t.x] = used[t.y] = used[t.z] = true;
     for (size_t i = 0; i < used.size(); ++i)
       if (used[i]) {
-        const glm::vec4 p = m.transform * glm::vec4(glm::vec3(m.soup.positions[i]), 1.0f);
-        bounds.extend(glm::vec3(p) / p.w);
+        const glm::dvec4 p = glm::dmat4(m.transform) *
+                             glm::dvec4(m.soup.anchor + glm::dvec3(glm::vec3(m.soup.positions[i])), 1.0);
+        bounds.extend(glm::vec3(glm::dvec3(p) / p.w));
       }
   }
   return bounds;

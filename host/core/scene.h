@@ -97,6 +97,7 @@ struct MeshInstance {
   // Scene material id given to every triangle, or TriangleSoup::kKeepMaterial when the soup's own ids are
   // already scene material ids (a "material" list remaps them at load time).
   uint32_t material = 0;
+  std::vector<std::string> warnings;  // from reading the file (mesh_loader.h), one line each
 };
 
 struct Scene {
@@ -123,10 +124,11 @@ Scene parse_scene(std::string_view json_text, const std::string& label,
 // "default", identity transform and default light, camera and environment framing the mesh.
 Scene load_input(const std::filesystem::path& input);
 
-// Every mesh in world space with its material ids, in scene order.
+// Every mesh in world space with its material ids, in scene order; positions relative to an anchor chosen
+// for the whole scene (choose_anchor).
 TriangleSoup scene_triangles(const Scene& scene);
 
-// World-space bounds of all meshes.
+// World-space bounds of all meshes (float: for framing cameras and lights).
 Bounds scene_bounds(const Scene& scene);
 
 // Scale, then rotate about X, Y and Z (degrees, in that order), then translate.

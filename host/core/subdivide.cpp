@@ -12,6 +12,7 @@ constexpr uint64_t kMaxElements = uint64_t(1) << 31;
 
 TriangleSoup subdivide_once(const TriangleSoup& in) {
   TriangleSoup out;
+  out.anchor = in.anchor;
   // A closed mesh has 3T/2 edges; an open one at most 3T.
   const size_t edge_guess = in.triangles.size() * 3 / 2 + 16;
   out.positions.reserve(in.positions.size() + edge_guess);

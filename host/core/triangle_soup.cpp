@@ -1,5 +1,6 @@
 #include "core/triangle_soup.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -52,12 +53,27 @@ Bounds TriangleSoup::bounds() const {
   return b;
 }
 
+glm::dvec3 choose_anchor(const glm::dvec3& lo, const glm::dvec3& hi) {
+  const glm::dvec3 size = glm::max(hi - lo, glm::dvec3(0.0));
+  const double longest = std::max({size.x, size.y, size.z});
+  const double scale = longest > 0.0 ? std::exp2(std::ceil(std::log2(longest))) : 1.0;
+  const double reach = std::max(
+      {std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
+  if (!(reach > 2.0 * scale)) return glm::dvec3(0.0);
+  return glm::floor(lo / scale) * scale;
+}
+
 void TriangleSoup::append(const TriangleSoup& other, const glm::mat4& transform, uint32_t material) {
   const uint32_t base = static_cast<uint32_t>(positions.size());
   positions.reserve(positions.size() + other.positions.size());
-  for (const glm::vec4& p : other.positions) {
-    glm::vec4 q = transform * glm::vec4(glm::vec3(p), 1.0f);
-    positions.push_back(glm::vec4(glm::vec3(q) / q.w, 1.0f));
+  if (transform == glm::mat4(1.0f) && other.anchor == anchor) {
+    positions.insert(positions.end(), other.positions.begin(), other.positions.end());
+  } else {
+    const glm::dmat4 t(transform);
+    for (const glm::vec4& p : other.positions) {
+      const glm::dvec4 q = t * glm::dvec4(other.anchor + glm::dvec3(glm::vec3(p)), 1.0);
+      positions.push_back(glm::vec4(glm::vec3(glm::dvec3(q) / q.w - anchor), 1.0f));
+    }
   }
   triangles.reserve(triangles.size() + other.triangles.size());
   for (const glm::uvec4& t : other.triangles)

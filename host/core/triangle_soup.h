@@ -1,5 +1,7 @@
 // The scene as the kernels read it: vertex positions (float4, w = 1) and triangles (uint4: three vertex
 // indices and the material id in w). Loaders and generators all produce this; nothing else is uploaded.
+// Positions are relative to `anchor` (world = anchor + position, in double): a mesh far from the origin
+// (survey or CAD coordinates) keeps float precision relative to its own size, as one at the origin does.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -32,22 +34,29 @@ struct Bounds {
 };
 
 struct TriangleSoup {
+  glm::dvec3 anchor{0.0};  // world position of the frame the positions are in
   // Page-aligned, so a CPU device reads them in place (host_array.h).
-  HostArray<glm::vec4> positions;   // w = 1
+  HostArray<glm::vec4> positions;   // relative to anchor; w = 1
   HostArray<glm::uvec4> triangles;  // xyz: indices into positions, w: material id
 
   size_t triangle_count() const { return triangles.size(); }
   size_t vertex_count() const { return positions.size(); }
   bool empty() const { return triangles.empty(); }
 
-  // Bounds of the vertices that triangles use.
+  // Bounds of the vertices that triangles use, relative to anchor.
   Bounds bounds() const;
-  // Appends `other` with every position transformed by `transform`; its material ids are replaced by
-  // `material` unless `material` is kKeepMaterial.
+  // Appends `other` with every world position transformed by `transform` (in double, then expressed
+  // relative to this soup's anchor); its material ids are replaced by `material` unless it is kKeepMaterial.
   static constexpr uint32_t kKeepMaterial = 0xffffffffu;
   void append(const TriangleSoup& other, const glm::mat4& transform = glm::mat4(1.0f),
               uint32_t material = kKeepMaterial);
 };
+
+// The anchor for world positions within [lo, hi]: 0 when the box lies within two of its sizes of the origin
+// (float positions lose nothing there), else the box's corner rounded down to a multiple of the power of two
+// at or above its size, so that translating a mesh by such multiples translates the anchor and leaves the
+// float positions bit for bit the same.
+glm::dvec3 choose_anchor(const glm::dvec3& lo, const glm::dvec3& hi);
 
 // Throws voxr::Error naming `source` when the soup is empty, an index is out of range or a vertex that a
 // triangle uses is NaN or infinite. Returns the number of degenerate (zero-area) triangles, which are kept:

@@ -102,8 +102,9 @@ fs::path write_binvox(const VoxelGrid& grid, const fs::path& out) {
   const uint64_t d = spec.dims.x;
 
   OutputFile file(out);
-  file.write(fmt::format("#binvox 1\ndim {} {} {}\ntranslate {} {} {}\nscale {}\ndata\n", d, d, d,
-                         spec.origin.x, spec.origin.y, spec.origin.z, float(d) * spec.voxel_size));
+  const glm::dvec3 corner = spec.anchor + glm::dvec3(spec.origin);
+  file.write(fmt::format("#binvox 1\ndim {} {} {}\ntranslate {} {} {}\nscale {}\ndata\n", d, d, d, corner.x,
+                         corner.y, corner.z, float(d) * spec.voxel_size));
 
   // binvox walks x slowest and y fastest, across voxr's x-fastest layout. For each block of 64 x-values
   // and each z, 64 x 64 tiles (64 y-rows of 64 x-bits) are transposed into 64 words along y, one per x,

@@ -1,7 +1,7 @@
 // binvox output (Patrick Min's format, version 1), occupancy only, cubic grids only (D^3):
 //   "#binvox 1\ndim D D D\ntranslate tx ty tz\nscale s\ndata\n" then (value, count 1..255) byte pairs
 // run-length encoding the voxels in binvox order: y fastest, then z, then x (index = x*D*D + z*D + y).
-// translate = world position of the grid corner (spec.origin), scale = D * voxel size, so that binvox's
+// translate = world position of the grid corner (spec.anchor + spec.origin), scale = D * voxel size, so that binvox's
 // (index + 0.5) / D * scale + translate is the voxel centre along each world axis. binvox has no rotation:
 // a grid whose axes are not the world axes is written in its own frame.
 #pragma once

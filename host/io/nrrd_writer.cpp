@@ -1,8 +1,8 @@
 #include "io/nrrd_writer.h"
 
 #include <bit>
-#include <span>
 #include <memory>
+#include <span>
 #include <string>
 
 #include <fmt/format.h>
@@ -18,7 +18,9 @@ static_assert(std::endian::native == std::endian::little, "the NRRD writer emits
 
 namespace {
 
-std::string vec_text(const glm::vec3& v) {
+// Shortest text that reads back as the same float or double.
+template <typename Vec>
+std::string vec_text(const Vec& v) {
   return fmt::format("({},{},{})", v.x, v.y, v.z);
 }
 
@@ -39,7 +41,7 @@ std::string nrrd_header(const GridSpec& spec, const char* type, bool vector, con
   h += fmt::format("centers: {}cell cell cell\n", pre);
   h += "endian: little\n";
   h += "encoding: raw\n";
-  h += fmt::format("space origin: {}\n", vec_text(spec.voxel_center_world(0, 0, 0)));
+  h += fmt::format("space origin: {}\n", vec_text(spec.voxel_center_absolute(0, 0, 0)));
   h += "\n";
   return h;
 }

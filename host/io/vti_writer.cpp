@@ -54,7 +54,7 @@ fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
   }
   if (grid.channels.has(Channel::kInside)) VOXR_CHECK_EQ(grid.inside.size(), grid.occ.size());
 
-  const glm::vec3 origin = spec.voxel_center_world(0, 0, 0);
+  const glm::dvec3 origin = spec.voxel_center_absolute(0, 0, 0);
   const std::string extent = fmt::format("0 {} 0 {} 0 {}", spec.dims.x - 1, spec.dims.y - 1, spec.dims.z - 1);
   std::string direction;
   for (int row = 0; row < 3; ++row)

@@ -1,0 +1,60 @@
+// Wavefront OBJ: positions from `v`, polygons from `f`; texture coordinates, normals, groups, materials,
+// lines and points carry no area and are ignored.
+#include <algorithm>
+
+#include "mesh/mesh_readers.h"
+#include "mesh/text_scan.h"
+
+namespace voxr {
+
+namespace {
+
+using text::printable;
+
+// One corner of a face, "v", "v/vt", "v//vn" or "v/vt/vn", with 1-based or negative (relative) indices.
+uint32_t corner_index(const std::string& name, size_t line, std::string_view token, size_t vertices) {
+  const std::string_view v = token.substr(0, token.find('/'));
+  long long index = 0;
+  const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), index);
+  if (ec != std::errc() || end != v.data() + v.size() || v.empty())
+    fail("{}: line {}: face corner '{}' does not start with a vertex index", name, line, printable(token));
+  const long long resolved = index < 0 ? (long long)vertices + index : index - 1;
+  if (index == 0 || resolved < 0 || resolved >= (long long)vertices)
+    fail("{}: line {}: face corner '{}' refers to vertex {} but {} vertices are defined before it", name,
+         line, printable(token), index, vertices);
+  return uint32_t(resolved);
+}
+
+}  // namespace
+
+PolygonMesh read_obj(const std::string& name, std::string_view bytes) {
+  PolygonMesh mesh;
+  text::Lines lines(bytes);
+  std::string_view line;
+  std::vector<std::string_view> tokens;
+  std::vector<uint32_t> corners;
+  size_t number = 0;
+  while (lines.next(line, number)) {
+    text::split(line, '#', tokens);
+    if (tokens.empty()) continue;
+    if (tokens[0] == "v") {
+      if (tokens.size() < 4) fail("{}: line {}: a vertex needs three coordinates", name, number);
+      glm::dvec3 p;
+      for (int c = 0; c < 3; ++c)
+        if (!text::parse_number(tokens[c + 1], p[c]))
+          fail("{}: line {}: vertex coordinate '{}' is not a finite number", name, number,
+               printable(tokens[c + 1]));
+      if (mesh.positions.size() >= (size_t(1) << 31))
+        fail("{}: line {}: more vertices than voxr can index", name, number);
+      mesh.positions.push_back(p);
+    } else if (tokens[0] == "f" || tokens[0] == "fo") {
+      corners.clear();
+      for (size_t k = 1; k < tokens.size(); ++k)
+        corners.push_back(corner_index(name, number, tokens[k], mesh.positions.size()));
+      mesh.add_face(corners.data(), uint32_t(corners.size()));
+    }
+  }
+  return mesh;
+}
+
+}  // namespace voxr

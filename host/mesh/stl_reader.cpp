@@ -1,0 +1,133 @@
+// STL, ASCII and binary. STL lists every triangle's corners; corners at identical positions are merged so
+// that a closed mesh is closed by index too (mesh_topology.h).
+#include <algorithm>
+#include <cstring>
+#include <unordered_map>
+
+#include "mesh/mesh_readers.h"
+#include "mesh/text_scan.h"
+
+namespace voxr {
+
+namespace {
+
+using text::printable;
+
+struct PositionHash {
+  size_t operator()(const glm::dvec3& p) const {
+    uint64_t h = 0x9e3779b97f4a7c15ull, bits;
+    for (int c = 0; c < 3; ++c) {
+      const double v = p[c] == 0.0 ? 0.0 : p[c];  // -0 and +0 are one position
+      std::memcpy(&bits, &v, sizeof bits);
+      h = (h ^ bits) * 0x100000001b3ull;
+      h ^= h >> 29;
+    }
+    return size_t(h);
+  }
+};
+
+// Collects corners, merging identical positions.
+class CornerWelder {
+ public:
+  explicit CornerWelder(PolygonMesh& mesh, size_t corners) : mesh_(mesh) {
+    ids_.reserve(std::min(corners, size_t(1) << 24) / 4);
+  }
+  uint32_t add(const glm::dvec3& p) {
+    const auto [it, added] = ids_.try_emplace(p, uint32_t(mesh_.positions.size()));
+    if (added) mesh_.positions.push_back(p);
+    return it->second;
+  }
+
+ private:
+  PolygonMesh& mesh_;
+  std::unordered_map<glm::dvec3, uint32_t, PositionHash> ids_;
+};
+
+bool looks_ascii(std::string_view bytes) {
+  size_t i = 0;
+  while (i < bytes.size() && (text::is_space(bytes[i]) || bytes[i] == '\n')) ++i;
+  if (bytes.substr(i, 5) != "solid") return false;
+  const size_t eol = bytes.find('\n', i);
+  if (eol == std::string_view::npos) return bytes.size() < 84;  // a one-line file is no binary STL either
+  i = eol + 1;
+  while (i < bytes.size() && (text::is_space(bytes[i]) || bytes[i] == '\n')) ++i;
+  return bytes.substr(i, 5) == "facet" || bytes.substr(i, 8) == "endsolid";
+}
+
+PolygonMesh read_binary(const std::string& name, std::string_view bytes, uint32_t triangles) {
+  PolygonMesh mesh;
+  CornerWelder welder(mesh, 3 * size_t(triangles));
+  mesh.indices.reserve(3 * size_t(triangles));
+  mesh.face_sizes.assign(triangles, 3);
+  for (uint32_t t = 0; t < triangles; ++t) {
+    // Per triangle: normal (3 floats), 3 corners (9 floats), 2 attribute bytes.
+    float c[9];
+    std::memcpy(c, bytes.data() + 84 + 50 * size_t(t) + 12, sizeof c);
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 p(c[3 * k], c[3 * k + 1], c[3 * k + 2]);
+      if (!(std::abs(p.x) <= text::kMaxCoordinate && std::abs(p.y) <= text::kMaxCoordinate &&
+            std::abs(p.z) <= text::kMaxCoordinate))
+        fail("{}: triangle {} corner {} is not finite ({}, {}, {})", name, t, k, p.x, p.y, p.z);
+      mesh.indices.push_back(welder.add(p));
+    }
+  }
+  return mesh;
+}
+
+PolygonMesh read_ascii(const std::string& name, std::string_view bytes) {
+  PolygonMesh mesh;
+  CornerWelder welder(mesh, bytes.size() / 40);
+  text::Lines lines(bytes);
+  std::string_view line;
+  std::vector<std::string_view> tokens;
+  std::vector<uint32_t> loop;
+  size_t number = 0, loop_line = 0;
+  bool in_loop = false;
+  while (lines.next(line, number)) {
+    text::split(line, 0, tokens);
+    if (tokens.empty()) continue;
+    if (tokens[0] == "outer") {
+      if (in_loop) fail("{}: line {}: 'outer loop' inside the loop of line {}", name, number, loop_line);
+      in_loop = true;
+      loop_line = number;
+      loop.clear();
+    } else if (tokens[0] == "vertex") {
+      if (!in_loop) fail("{}: line {}: a vertex outside 'outer loop' ... 'endloop'", name, number);
+      if (tokens.size() < 4) fail("{}: line {}: a vertex needs three coordinates", name, number);
+      glm::dvec3 p;
+      for (int c = 0; c < 3; ++c)
+        if (!text::parse_number(tokens[c + 1], p[c]))
+          fail("{}: line {}: vertex coordinate '{}' is not a finite number", name, number,
+               printable(tokens[c + 1]));
+      loop.push_back(welder.add(p));
+    } else if (tokens[0] == "endloop") {
+      if (!in_loop) fail("{}: line {}: 'endloop' without 'outer loop'", name, number);
+      in_loop = false;
+      mesh.add_face(loop.data(), uint32_t(loop.size()));
+    }
+  }
+  if (in_loop) fail("{}: the file ends inside the loop that starts on line {}", name, loop_line);
+  return mesh;
+}
+
+}  // namespace
+
+PolygonMesh read_stl(const std::string& name, std::string_view bytes, std::vector<std::string>& notes) {
+  uint32_t triangles = 0;
+  if (bytes.size() >= 84) std::memcpy(&triangles, bytes.data() + 80, 4);
+  const uint64_t binary_size = 84 + 50 * uint64_t(triangles);
+  if (bytes.size() >= 84 && bytes.size() == binary_size) return read_binary(name, bytes, triangles);
+  if (looks_ascii(bytes)) return read_ascii(name, bytes);
+  if (bytes.size() < 84)
+    fail("{}: neither ASCII STL (no 'solid' ... 'facet') nor binary STL (shorter than the 84-byte header)",
+         name);
+  if (bytes.size() < binary_size)
+    fail("{}: binary STL header announces {} triangles ({} bytes) but the file has {} bytes", name, triangles,
+         binary_size, bytes.size());
+  // Some exporters pad or append a footer; the header's count is the authority.
+  notes.push_back(fmt::format("{}: ignored {} bytes after the {} triangles the binary STL header announces",
+                              name, bytes.size() - binary_size, triangles));
+  return read_binary(name, bytes, triangles);
+}
+
+}  // namespace voxr
