@@ -10,7 +10,9 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -137,24 +139,46 @@ std::string nrrd_array_name(const NrrdHeader& h, const fs::path& file) {
   return file.stem().string();
 }
 
-// Unit columns of "space directions" when they are not axis aligned; empty otherwise (or when absent).
-std::optional<std::array<double, 9>> nrrd_rotation(const NrrdHeader& h) {
-  std::string text = h.get("space directions");
-  if (text.empty()) return std::nullopt;
-  std::vector<std::array<double, 3>> vectors;
+std::vector<std::string> split_words(const std::string& text) {
+  std::vector<std::string> words;
+  std::istringstream in(text);
+  for (std::string w; in >> w;) words.push_back(w);
+  return words;
+}
+
+// "space directions", one entry per axis: a vector, or nullopt for "none" (a non-spatial axis).
+std::optional<std::vector<std::optional<std::array<double, 3>>>> nrrd_directions(const NrrdHeader& h) {
+  const std::string text = h.get("space directions");
+  std::vector<std::optional<std::array<double, 3>>> axes;
   size_t pos = 0;
-  while ((pos = text.find('(', pos)) != std::string::npos) {
+  while ((pos = text.find_first_not_of(" \t", pos)) != std::string::npos) {
+    if (text.compare(pos, 4, "none") == 0) {
+      axes.push_back(std::nullopt);
+      pos += 4;
+      continue;
+    }
     const size_t end = text.find(')', pos);
-    if (end == std::string::npos) break;
+    if (text[pos] != '(' || end == std::string::npos) return std::nullopt;
     std::array<double, 3> v{};
     std::string inner = text.substr(pos + 1, end - pos - 1);
     std::replace(inner.begin(), inner.end(), ',', ' ');
     std::istringstream in(inner);
     in >> v[0] >> v[1] >> v[2];
     if (!in) return std::nullopt;
-    vectors.push_back(v);
+    axes.push_back(v);
     pos = end + 1;
   }
+  if (axes.empty()) return std::nullopt;
+  return axes;
+}
+
+// Unit columns of "space directions" when they are not axis aligned; empty otherwise (or when absent).
+std::optional<std::array<double, 9>> nrrd_rotation(const NrrdHeader& h) {
+  const auto directions = nrrd_directions(h);
+  if (!directions) return std::nullopt;
+  std::vector<std::array<double, 3>> vectors;
+  for (const auto& d : *directions)
+    if (d) vectors.push_back(*d);
   if (vectors.size() != 3) return std::nullopt;
   std::array<double, 9> d{};  // row-major, columns are the axes
   bool aligned = true;
@@ -171,17 +195,96 @@ std::optional<std::array<double, 9>> nrrd_rotation(const NrrdHeader& h) {
   return d;
 }
 
-vtkSmartPointer<vtkImageData> read_nrrd_image(const fs::path& file) {
+// How a NRRD file's axes map onto a VTK image, as its header says. vtkNrrdReader guesses instead: it takes
+// any first axis of 9 or fewer samples for vector components, so an 8x20x20 grid came back as a 20x20x1
+// image of 8 components.
+struct NrrdLayout {
+  int components = 1;  // samples per voxel, from the first axis when it is not a space axis
+  std::array<int, 3> dims{1, 1, 1};
+  std::array<double, 3> spacing{1.0, 1.0, 1.0};
+};
+
+bool is_space_kind(const std::string& kind) {
+  return kind == "domain" || kind == "space" || kind == "time";
+}
+
+NrrdLayout nrrd_layout(const NrrdHeader& h, const fs::path& file) {
+  std::vector<long long> sizes;
+  for (const std::string& w : split_words(h.get("sizes"))) {
+    char* end = nullptr;
+    const long long n = std::strtoll(w.c_str(), &end, 10);
+    if (*end != '\0' || n <= 0 || n > std::numeric_limits<int>::max())
+      fail("{}: bad 'sizes' entry '{}' in the NRRD header", file.string(), w);
+    sizes.push_back(n);
+  }
+  if (sizes.empty()) fail("{}: the NRRD header has no 'sizes' field", file.string());
+  std::vector<std::string> kinds = split_words(lower(h.get("kinds")));
+  if (!kinds.empty() && kinds.size() != sizes.size())
+    fail("{}: the NRRD header's 'kinds' names {} axes and 'sizes' {}", file.string(), kinds.size(),
+         sizes.size());
+  const auto directions = nrrd_directions(h);
+  const bool directions_per_axis = directions && directions->size() == sizes.size();
+
+  // The first axis holds components when its kind says so (voxr writes "3-vector" there for normals and
+  // "domain" for every space axis). Without a kind, NRRD's own hints: a "none" direction, or a 4th axis.
+  bool components_first = false;
+  const std::string first_kind = kinds.empty() ? "???" : kinds[0];
+  if (first_kind == "???" || first_kind == "none")
+    components_first = sizes.size() > 3 || (directions_per_axis && !(*directions)[0]);
+  else
+    components_first = !is_space_kind(first_kind);
+  const size_t first_space = components_first ? 1 : 0;
+  for (size_t a = first_space; a < kinds.size(); ++a)
+    if (kinds[a] != "???" && kinds[a] != "none" && !is_space_kind(kinds[a]))
+      fail("{}: NRRD axis {} is of kind '{}'; voxr-view reads vector components on the first axis only",
+           file.string(), a, kinds[a]);
+  if (sizes.size() - first_space < 1 || sizes.size() - first_space > 3)
+    fail("{}: the NRRD file has {} space axes; voxr-view reads 1 to 3", file.string(),
+         sizes.size() - first_space);
+
+  NrrdLayout layout;
+  if (components_first) layout.components = int(sizes[0]);
+  std::vector<double> spacings;
+  for (const std::string& w : split_words(h.get("spacings")))
+    spacings.push_back(std::strtod(w.c_str(), nullptr));
+  for (size_t a = first_space; a < sizes.size(); ++a) {
+    const size_t i = a - first_space;
+    layout.dims[i] = int(sizes[a]);
+    if (directions_per_axis && (*directions)[a]) {
+      const auto& v = *(*directions)[a];
+      layout.spacing[i] = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    } else if (spacings.size() == sizes.size() && std::isfinite(spacings[a])) {
+      layout.spacing[i] = spacings[a];
+    }
+  }
+  return layout;
+}
+
+// Reads the samples with vtkNrrdReader and shapes them as the header says. The sample order is the same
+// whichever axis VTK took for components (components fastest, then x, y, z), so only the shape changes.
+vtkSmartPointer<vtkImageData> read_nrrd_image(const fs::path& file, const NrrdHeader& h) {
+  const NrrdLayout layout = nrrd_layout(h, file);
   clear_vtk_errors();
   auto reader = vtkSmartPointer<vtkNrrdReader>::New();
   reader->SetFileName(file.c_str());
   reader->Update();
   if (const std::string err = last_vtk_error(); !err.empty())
     fail("{}: cannot read the volume: {}", file.string(), err);
+  vtkImageData* read = reader->GetOutput();
+  vtkDataArray* samples = read->GetPointData()->GetScalars();
+  if (!samples || read->GetNumberOfPoints() == 0) fail("{}: the NRRD reader returned no data", file.string());
+  const vtkIdType expected =
+      vtkIdType(layout.components) * layout.dims[0] * layout.dims[1] * vtkIdType(layout.dims[2]);
+  if (samples->GetNumberOfValues() != expected)
+    fail("{}: the NRRD reader returned {} values where the header's sizes make {}", file.string(),
+         samples->GetNumberOfValues(), expected);
+  samples->SetNumberOfComponents(layout.components);
+
   auto image = vtkSmartPointer<vtkImageData>::New();
-  image->ShallowCopy(reader->GetOutput());
-  if (!image->GetPointData()->GetScalars() || image->GetNumberOfPoints() == 0)
-    fail("{}: the NRRD reader returned no data", file.string());
+  image->SetDimensions(layout.dims.data());
+  image->SetSpacing(layout.spacing.data());
+  image->SetOrigin(read->GetOrigin());
+  image->GetPointData()->SetScalars(samples);
   return image;
 }
 
@@ -209,7 +312,7 @@ Volume load_nrrd(const fs::path& file) {
 
   Volume v;
   v.source = file;
-  v.image = read_nrrd_image(base);
+  v.image = read_nrrd_image(base, base_header);
   v.image->GetPointData()->GetScalars()->SetName(nrrd_array_name(base_header, base).c_str());
   v.files.push_back(base);
   if (const auto rotation = nrrd_rotation(base_header)) v.image->SetDirectionMatrix(rotation->data());
@@ -230,7 +333,7 @@ Volume load_nrrd(const fs::path& file) {
   const int* dims = v.image->GetDimensions();
   for (const fs::path& p : siblings) {
     const NrrdHeader h = read_nrrd_header(p);
-    vtkSmartPointer<vtkImageData> image = read_nrrd_image(p);
+    vtkSmartPointer<vtkImageData> image = read_nrrd_image(p, h);
     const int* d = image->GetDimensions();
     if (d[0] != dims[0] || d[1] != dims[1] || d[2] != dims[2])
       fail("{}: dimensions {}x{}x{} differ from {}'s {}x{}x{}", p.string(), d[0], d[1], d[2],
