@@ -1,0 +1,141 @@
+#include "mesh/assimp_reader.h"
+
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <assimp/Importer.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <exception>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "core/error.h"
+
+namespace voxr {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lower_extension(const fs::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+// Assimp's messages may span lines (validation lists every problem); a voxr error is one line.
+std::string one_line(std::string text) {
+  std::string out;
+  bool space = false;
+  for (char c : text) {
+    if (c == '\n' || c == '\r' || c == '\t' || c == ' ') {
+      space = !out.empty();
+      continue;
+    }
+    if (space) out += ' ';
+    space = false;
+    out += c;
+  }
+  return out.empty() ? std::string("Assimp gave no reason") : out;
+}
+
+// aiMatrix4x4 is row-major with the translation in column 4; glm is column-major (m[column][row]).
+glm::dmat4 to_dmat4(const aiMatrix4x4& m) {
+  glm::dmat4 d;
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) d[col][row] = double(m[row][col]);
+  return d;
+}
+
+struct Skipped {
+  size_t points = 0;
+  size_t lines = 0;
+};
+
+// Appends one instance of `mesh` under the world transform `world`.
+void append_instance(const aiMesh& mesh, const glm::dmat4& world, PolygonMesh& out, Skipped& skipped) {
+  const auto base = uint32_t(out.positions.size());
+  const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
+  bool any_face = false;
+  std::vector<uint32_t> corners;
+  for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+    const aiFace& face = mesh.mFaces[f];
+    if (face.mNumIndices == 1) ++skipped.points;
+    if (face.mNumIndices == 2) ++skipped.lines;
+    if (face.mNumIndices < 3) continue;
+    corners.resize(face.mNumIndices);
+    for (unsigned c = 0; c < face.mNumIndices; ++c) corners[c] = base + face.mIndices[c];
+    if (mirrored) std::reverse(corners.begin(), corners.end());
+    out.add_face(corners.data(), uint32_t(corners.size()));
+    any_face = true;
+  }
+  if (!any_face) return;  // a points- or lines-only mesh adds no vertices
+  out.positions.reserve(out.positions.size() + mesh.mNumVertices);
+  for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+    const aiVector3D& p = mesh.mVertices[v];
+    out.positions.push_back(glm::dvec3(world * glm::dvec4(double(p.x), double(p.y), double(p.z), 1.0)));
+  }
+}
+
+}  // namespace
+
+bool is_assimp_extension(const fs::path& file) {
+  const std::string ext = lower_extension(file);
+  return std::any_of(std::begin(kAssimpExtensions), std::end(kAssimpExtensions),
+                     [&](const char* known) { return ext == known; });
+}
+
+PolygonMesh read_with_assimp(const fs::path& file) {
+  const std::string name = file.string();
+  if (!is_assimp_extension(file))
+    fail("{}: unknown mesh extension '{}' (Assimp reads .gltf, .glb, .fbx, .dae, .3mf)", name,
+         file.extension().string());
+  std::error_code ec;
+  if (!fs::exists(file, ec)) fail("{}: no such file", name);
+  if (!fs::is_regular_file(file, ec)) fail("{}: not a regular file", name);
+  if (fs::file_size(file, ec) == 0) fail("{}: empty file", name);
+
+  // One importer per call: Assimp::Importer is not shared between threads. No DefaultLogger is created,
+  // so Assimp logs to its NullLogger and prints nothing.
+  Assimp::Importer importer;
+  // Only positions matter here: dropping normals, UVs, colours, tangents and bone weights lets
+  // JoinIdenticalVertices merge corners by position, so per-face normals do not open a closed mesh.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
+                              aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
+                                  aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS);
+  // A file with bones and no meshes must not turn into a mesh of its skeleton.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
+  const unsigned flags =
+      aiProcess_ValidateDataStructure | aiProcess_RemoveComponent | aiProcess_JoinIdenticalVertices;
+  const aiScene* scene = nullptr;
+  try {
+    scene = importer.ReadFile(name, flags);
+  } catch (const std::exception& e) {
+    fail("{}: cannot read: {}", name, one_line(e.what()));
+  }
+  if (scene == nullptr) fail("{}: cannot read: {}", name, one_line(importer.GetErrorString()));
+
+  PolygonMesh out;
+  Skipped skipped;
+  if (scene->mRootNode != nullptr) {
+    std::vector<std::pair<const aiNode*, glm::dmat4>> stack{{scene->mRootNode, glm::dmat4(1.0)}};
+    while (!stack.empty()) {
+      const auto [node, parent] = stack.back();
+      stack.pop_back();
+      const glm::dmat4 world = parent * to_dmat4(node->mTransformation);
+      for (unsigned i = 0; i < node->mNumMeshes; ++i)
+        append_instance(*scene->mMeshes[node->mMeshes[i]], world, out, skipped);
+      // Children pushed in reverse so instances come out in the file's order.
+      for (unsigned c = node->mNumChildren; c-- > 0;) stack.emplace_back(node->mChildren[c], world);
+    }
+  }
+  if (out.face_count() == 0)
+    fail("{}: no polygon faces ({} meshes; skipped {} points and {} lines)", name, scene->mNumMeshes,
+         skipped.points, skipped.lines);
+  return out;
+}
+
+}  // namespace voxr

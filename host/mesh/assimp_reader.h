@@ -1,0 +1,30 @@
+// Mesh formats read through Assimp: glTF 2.0 (.gltf, .glb), FBX, Collada (.dae) and 3MF. Assimp keeps
+// positions and node transforms in float (ai_real); this reader composes the node hierarchy and transforms
+// each vertex in double, so no rounding is added beyond what Assimp already did.
+#pragma once
+
+#include <filesystem>
+
+#include "mesh/polygon_mesh.h"
+
+namespace voxr {
+
+// Lower-case file extensions (with the dot) that read_with_assimp accepts.
+inline constexpr const char* kAssimpExtensions[] = {".gltf", ".glb", ".fbx", ".dae", ".3mf"};
+
+// True when `file`'s extension (any case) is one of kAssimpExtensions.
+bool is_assimp_extension(const std::filesystem::path& file);
+
+// Every polygon face of every mesh instance in `file`'s node hierarchy, in world units (the file's units;
+// Collada's <unit> and up axis are applied by Assimp as a root transform), each instance transformed by
+// its node's accumulated transform in double. A mesh referenced by n nodes appears n times. Faces keep
+// their corner count (no triangulation); vertices identical in position within one mesh instance are
+// joined, so a closed mesh stays closed by index. Winding is reversed under mirroring transforms so faces
+// keep their orientation. Points and lines are skipped (they have no area); skinning, morph targets and
+// animation are ignored (the bind pose is read). `materials` stays empty.
+// Throws voxr::Error, one line starting with the path: missing or empty file, unknown extension, a file
+// Assimp cannot parse or validate (with Assimp's message), or no polygon faces (with the points and
+// lines skipped).
+PolygonMesh read_with_assimp(const std::filesystem::path& file);
+
+}  // namespace voxr
