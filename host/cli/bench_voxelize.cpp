@@ -15,6 +15,7 @@
 #include "cl/cl_runtime.h"
 #include "cli/process.h"
 #include "core/clock.h"
+#include "io/atomic_file.h"
 #include "io/volume_writer.h"
 #include "voxelize/voxelizer.h"
 
@@ -202,9 +203,7 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
     }
   }
   if (!args.out.empty()) {
-    std::ofstream out(args.out);
-    out << csv;
-    if (!out) fail("{}: cannot write the CSV", args.out);
+    write_file_atomically(args.out, csv);
     fmt::print("wrote {}\n", args.out);
   }
   return 0;

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <fstream>
 #include <sstream>
 
 #include "bench/bench_meshes.h"
@@ -15,6 +14,7 @@
 #include "cli/bench_voxelize.h"
 #include "cli/commands.h"
 #include "cli/openvdb_plugin.h"
+#include "io/atomic_file.h"
 
 namespace voxr::cli {
 
@@ -40,9 +40,7 @@ std::string device_description(const ClRuntime& cl) {
 // Writes PREFIX + each extension's text and says so.
 void write_report(const std::string& prefix, const std::vector<std::pair<std::string, std::string>>& files) {
   for (const auto& [ext, text] : files) {
-    std::ofstream out(prefix + ext);
-    out << text;
-    if (!out) fail("{}{}: cannot write", prefix, ext);
+    write_file_atomically(prefix + ext, text);
     fmt::print("wrote {}{}\n", prefix, ext);
   }
 }

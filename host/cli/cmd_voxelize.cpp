@@ -23,6 +23,7 @@
 #include "core/default_scene.h"
 #include "core/mesh_topology.h"
 #include "core/scene.h"
+#include "io/atomic_file.h"
 #include "io/volume_writer.h"
 #include "voxelize/voxelizer.h"
 
@@ -252,9 +253,7 @@ int run_voxelize(const VoxelizeArgs& args) {
   phases.process_ms = ms_since(process_start);
   const nlohmann::json report = make_report(args, cl, grid, options, stats, phases, result.channels);
   if (!args.report.empty()) {
-    std::ofstream out(args.report);
-    out << report.dump(2) << "\n";
-    if (!out) fail("{}: cannot write the report", args.report);
+    write_file_atomically(args.report, report.dump(2) + "\n");
   }
   if (!args.quiet) {
     fmt::print("input      {}\n", scene.source);

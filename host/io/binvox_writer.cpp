@@ -46,7 +46,7 @@ void transpose64(uint64_t (&a)[64]) {
 // Run-length encoder for binvox's (value, count) byte pairs, fed whole 64-bit words of the voxel stream.
 class RunWriter {
  public:
-  explicit RunWriter(OutputFile& file) : file_(file) { buffer_.reserve(kBuffer + 512); }
+  explicit RunWriter(AtomicFile& file) : file_(file) { buffer_.reserve(kBuffer + 512); }
   // The next `n` (1..64) voxels of the stream: bit t of `bits` is voxel t (bits above n are ignored).
   void push_word(uint64_t bits, uint32_t n) {
     while (n > 0) {
@@ -80,7 +80,7 @@ class RunWriter {
       buffer_.clear();
     }
   }
-  OutputFile& file_;
+  AtomicFile& file_;
   std::vector<uint8_t> buffer_;
   uint8_t value_ = 0;
   uint64_t run_ = 0;
@@ -101,9 +101,14 @@ fs::path write_binvox(const VoxelGrid& grid, const fs::path& out) {
   check_grid_layout(grid);
   const uint64_t d = spec.dims.x;
 
-  OutputFile file(out);
+  AtomicFile file(out);
   const glm::dvec3 corner = spec.anchor + glm::dvec3(spec.origin);
-  file.write(fmt::format("#binvox 1\ndim {} {} {}\ntranslate {} {} {}\nscale {}\ndata\n", d, d, d, corner.x,
+  file.write(fmt::format("#binvox 1
+dim {} {} {}
+translate {} {} {}
+scale {}
+data
+", d, d, d, corner.x,
                          corner.y, corner.z, float(d) * spec.voxel_size));
 
   // binvox walks x slowest and y fastest, across voxr's x-fastest layout. For each block of 64 x-values

@@ -47,7 +47,7 @@ std::string nrrd_header(const GridSpec& spec, const char* type, bool vector, con
 }
 
 // Bits as uint8 0/1, a bounded chunk at a time.
-void write_dense_bits(OutputFile& file, std::span<const uint32_t> bits, uint64_t n) {
+void write_dense_bits(AtomicFile& file, std::span<const uint32_t> bits, uint64_t n) {
   constexpr uint64_t kChunk = uint64_t(1) << 20;
   std::vector<uint8_t> buffer(size_t(std::min(n, kChunk)));
   for (uint64_t begin = 0; begin < n; begin += kChunk) {
@@ -75,21 +75,21 @@ std::vector<fs::path> write_nrrd(const VoxelGrid& grid, const fs::path& out) {
   check_grid_layout(grid);
   const GridSpec& spec = grid.spec;
 
-  std::vector<std::unique_ptr<OutputFile>> files;
-  files.push_back(std::make_unique<OutputFile>(out));
+  std::vector<std::unique_ptr<AtomicFile>> files;
+  files.push_back(std::make_unique<AtomicFile>(out));
   files.back()->write(nrrd_header(spec, "uint8", false, content(Channel::kOcc).c_str()));
   write_dense<uint8_t>(*files.back(), grid, 1, [](uint8_t* v, uint64_t) { *v = 1; });
   files.back()->close();
 
   if (grid.channels.has(Channel::kCount)) {
-    files.push_back(std::make_unique<OutputFile>(nrrd_channel_path(out, Channel::kCount)));
+    files.push_back(std::make_unique<AtomicFile>(nrrd_channel_path(out, Channel::kCount)));
     files.back()->write(nrrd_header(spec, "uint32", false, content(Channel::kCount).c_str()));
     write_dense<uint32_t>(*files.back(), grid, 1, [&](uint32_t* v, uint64_t r) { *v = grid.count[r]; });
     files.back()->close();
   }
   if (grid.channels.has(Channel::kNormal)) {
     const NormalChannel normal(grid);
-    files.push_back(std::make_unique<OutputFile>(nrrd_channel_path(out, Channel::kNormal)));
+    files.push_back(std::make_unique<AtomicFile>(nrrd_channel_path(out, Channel::kNormal)));
     files.back()->write(nrrd_header(spec, "float", true, content(Channel::kNormal).c_str()));
     write_dense<float>(*files.back(), grid, 3, [&](float* v, uint64_t r) {
       const glm::vec3 n = normal(r);
@@ -100,14 +100,14 @@ std::vector<fs::path> write_nrrd(const VoxelGrid& grid, const fs::path& out) {
     files.back()->close();
   }
   if (grid.channels.has(Channel::kMaterial)) {
-    files.push_back(std::make_unique<OutputFile>(nrrd_channel_path(out, Channel::kMaterial)));
+    files.push_back(std::make_unique<AtomicFile>(nrrd_channel_path(out, Channel::kMaterial)));
     files.back()->write(nrrd_header(spec, "uint32", false, content(Channel::kMaterial).c_str()));
     write_dense<uint32_t>(*files.back(), grid, 1, [&](uint32_t* v, uint64_t r) { *v = grid.material[r]; });
     files.back()->close();
   }
   if (grid.channels.has(Channel::kInside)) {
     VOXR_CHECK_EQ(grid.inside.size(), grid.occ.size());
-    files.push_back(std::make_unique<OutputFile>(nrrd_channel_path(out, Channel::kInside)));
+    files.push_back(std::make_unique<AtomicFile>(nrrd_channel_path(out, Channel::kInside)));
     files.back()->write(nrrd_header(spec, "uint8", false, content(Channel::kInside).c_str()));
     write_dense_bits(*files.back(), grid.inside, spec.voxel_count());
     files.back()->close();
@@ -115,7 +115,7 @@ std::vector<fs::path> write_nrrd(const VoxelGrid& grid, const fs::path& out) {
 
   std::vector<fs::path> written;
   for (auto& f : files) {
-    f->rename();
+    f->commit();
     written.push_back(f->path());
   }
   return written;

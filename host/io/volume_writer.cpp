@@ -1,10 +1,6 @@
 #include "io/volume_writer.h"
 
-#include <unistd.h>
-
 #include <cctype>
-#include <cerrno>
-#include <cstring>
 #include <string>
 
 #include <fmt/format.h>
@@ -65,15 +61,6 @@ void check_volume_output(const fs::path& out, const glm::uvec3& dims) {
   if (format == Format::kVox) check_vox_dims(out, dims);
 }
 
-void check_output_path(const fs::path& out) {
-  if (out.filename().empty()) fail("{}: the output path names a folder, not a file", out.string());
-  const fs::path folder = out.parent_path();
-  std::error_code ec;
-  if (!folder.empty() && !fs::is_directory(folder, ec))
-    fail("{}: folder '{}' does not exist", out.string(), folder.string());
-  if (fs::is_directory(out, ec)) fail("{}: is a folder", out.string());
-}
-
 void check_grid_layout(const VoxelGrid& grid) {
   VOXR_CHECK(grid.spec.voxel_count() > 0);
   const uint64_t words = (grid.spec.voxel_count() + 31) / 32;
@@ -87,57 +74,6 @@ void check_grid_layout(const VoxelGrid& grid) {
   if (grid.channels.has(Channel::kMaterial)) VOXR_CHECK_EQ(uint64_t(grid.material.size()), grid.voxels_set);
   if (grid.channels.has(Channel::kNormal))
     VOXR_CHECK(grid.normal.size() == grid.voxels_set || grid.normal_sum.size() == grid.voxels_set);
-}
-
-// ---- OutputFile ------------------------------------------------------------------------------------------
-
-OutputFile::OutputFile(fs::path path) : path_(std::move(path)) {
-  check_output_path(path_);
-  temp_ = path_;
-  temp_ += fmt::format(".{}.tmp", ::getpid());
-  file_ = std::fopen(temp_.c_str(), "wb");
-  if (!file_) fail_io("cannot create the file");
-  std::setvbuf(file_, nullptr, _IOFBF, size_t(1) << 20);
-}
-
-OutputFile::~OutputFile() {
-  if (file_) std::fclose(file_);
-  if (!renamed_) {
-    std::error_code ec;
-    fs::remove(temp_, ec);
-  }
-}
-
-void OutputFile::fail_io(std::string_view what) const {
-  const int err = errno;
-  fail("{}: {}: {}", path_.string(), what, err ? std::strerror(err) : "unknown error");
-}
-
-void OutputFile::write(const void* data, size_t bytes) {
-  VOXR_CHECK(file_ != nullptr);
-  errno = 0;
-  if (bytes != 0 && std::fwrite(data, 1, bytes, file_) != bytes) fail_io("write failed");
-}
-
-void OutputFile::close() {
-  if (!file_) return;
-  errno = 0;
-  const bool flushed = std::fflush(file_) == 0 && !std::ferror(file_);
-  const int flush_errno = errno;
-  const bool closed = std::fclose(file_) == 0;
-  file_ = nullptr;
-  if (!flushed || !closed) {
-    if (!flushed) errno = flush_errno;
-    fail_io("write failed");
-  }
-}
-
-void OutputFile::rename() {
-  close();
-  if (renamed_) return;
-  errno = 0;
-  if (std::rename(temp_.c_str(), path_.c_str()) != 0) fail_io("cannot move the finished file into place");
-  renamed_ = true;
 }
 
 // ---- NormalChannel ---------------------------------------------------------------------------------------

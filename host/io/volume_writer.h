@@ -1,20 +1,19 @@
 // Writing a VoxelGrid to a volume file, the format chosen by the extension: .nrrd, .vti, .binvox, .vox.
-// Also the plumbing the format writers share: an output file that appears only once it is complete
-// (temp file + rename, every failure reported with the path), and streaming of the sparse channels into
-// dense arrays a bounded chunk at a time, so a 1024^3 grid never needs a dense copy in memory.
+// Also the plumbing the format writers share: streaming of the sparse channels into dense arrays a bounded
+// chunk at a time, so a 1024^3 grid never needs a dense copy in memory. Every file is an AtomicFile
+// (io/atomic_file.h): it appears only once it is complete.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdio>
 #include <filesystem>
-#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "core/grid_spec.h"
 #include "grid/voxel_grid.h"
+#include "io/atomic_file.h"
 
 namespace voxr {
 
@@ -34,45 +33,8 @@ void fit_request_to_format(GridRequest& request, const std::filesystem::path& ou
 // hold. Throws voxr::Error naming `out`.
 void check_volume_output(const std::filesystem::path& out, const glm::uvec3& dims);
 
-// Throws voxr::Error naming `out` when its folder does not exist or `out` is a folder.
-void check_output_path(const std::filesystem::path& out);
-
 // Programmer-error checks (VOXR_CHECK) that the grid's occupancy and sparse channels agree in size.
 void check_grid_layout(const VoxelGrid& grid);
-
-// A file written under a temporary name next to `path` and renamed to `path` by commit(). Destroying it
-// uncommitted removes the temporary file. Every failure throws voxr::Error naming `path` and the reason.
-class OutputFile {
- public:
-  explicit OutputFile(std::filesystem::path path);
-  ~OutputFile();
-  OutputFile(const OutputFile&) = delete;
-  OutputFile& operator=(const OutputFile&) = delete;
-
-  void write(const void* data, size_t bytes);
-  void write(std::string_view text) { write(text.data(), text.size()); }
-  template <typename T>
-  void write_pod(const T& value) {
-    write(&value, sizeof(T));
-  }
-  // Flushes and closes the temporary file; rename() then moves it into place. Writers producing several
-  // files close all of them before renaming any, so a failure leaves no half-written set behind.
-  void close();
-  void rename();
-  void commit() {
-    close();
-    rename();
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  [[noreturn]] void fail_io(std::string_view what) const;
-
-  std::filesystem::path path_;
-  std::filesystem::path temp_;
-  std::FILE* file_ = nullptr;
-  bool renamed_ = false;
-};
 
 // The unit normal of the set voxel of `rank`: grid.normal when present, else normalize(normal_sum).
 class NormalChannel {
@@ -105,7 +67,7 @@ void for_each_set_in(const VoxelGrid& grid, uint64_t begin, uint64_t end, uint64
 // Writes the grid as a dense array of `components` values of T per voxel in linear order (x fastest),
 // zero where a voxel is empty and fill(T* values, rank) for set voxels, a bounded chunk at a time.
 template <typename T, typename Fill>
-void write_dense(OutputFile& file, const VoxelGrid& grid, uint32_t components, Fill&& fill) {
+void write_dense(AtomicFile& file, const VoxelGrid& grid, uint32_t components, Fill&& fill) {
   constexpr uint64_t kChunk = uint64_t(1) << 20;  // voxels per chunk, a multiple of 32
   const uint64_t n = grid.spec.voxel_count();
   std::vector<T> buffer(size_t(std::min(n, kChunk) * components));

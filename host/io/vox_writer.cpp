@@ -22,7 +22,7 @@ namespace {
 
 constexpr int32_t kVoxVersion = 150;
 
-void write_chunk_header(OutputFile& file, const char id[4], uint64_t content, uint64_t children) {
+void write_chunk_header(AtomicFile& file, const char id[4], uint64_t content, uint64_t children) {
   file.write(id, 4);
   file.write_pod(int32_t(content));
   file.write_pod(int32_t(children));
@@ -96,7 +96,7 @@ fs::path write_vox(const VoxelGrid& grid, const fs::path& out) {
   const uint64_t xyzi_bytes = 12 + 4 + xyzi.size();
   const uint64_t rgba_bytes = 12 + 256 * 4;
 
-  OutputFile file(out);
+  AtomicFile file(out);
   file.write("VOX ");
   file.write_pod(kVoxVersion);
   write_chunk_header(file, "MAIN", 0, size_bytes + xyzi_bytes + rgba_bytes);

@@ -84,7 +84,7 @@ fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
   xml += "  </ImageData>\n";
   xml += "  <AppendedData encoding=\"raw\">\n   _";
 
-  OutputFile file(out);
+  AtomicFile file(out);
   file.write(xml);
   for (const VtiArray& a : arrays) {
     file.write_pod(uint64_t(n * a.components * a.value_bytes));
