@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "core/error.h"
+#include "mesh/assimp_reader.h"
 #include "mesh/file_bytes.h"
 #include "mesh/mesh_readers.h"
 #include "mesh/polygon_triangulation.h"
@@ -20,11 +21,12 @@ struct Format {
   Reader read;
 };
 
+// voxr's own readers, in double precision (mesh_readers.h); Assimp reads the rest (assimp_reader.h).
 const Format kFormats[] = {
-    {".off",
-     [](const std::string& n, std::string_view b, std::vector<std::string>&) { return read_off(n, b); }},
     {".obj",
      [](const std::string& n, std::string_view b, std::vector<std::string>&) { return read_obj(n, b); }},
+    {".off",
+     [](const std::string& n, std::string_view b, std::vector<std::string>&) { return read_off(n, b); }},
     {".ply",
      [](const std::string& n, std::string_view b, std::vector<std::string>&) { return read_ply(n, b); }},
     {".stl", read_stl},
@@ -66,17 +68,18 @@ TriangleSoup to_soup(const PolygonMesh& mesh, TriangulationReport& report) {
 std::string mesh_extensions() {
   std::string s;
   for (const Format& f : kFormats) s += (s.empty() ? "" : ", ") + std::string(f.extension);
+  for (const char* e : kAssimpExtensions) s += ", " + std::string(e);
   return s;
 }
 
 bool is_mesh_file(const std::filesystem::path& file) {
-  return find_format(file) != nullptr;
+  return find_format(file) != nullptr || is_assimp_extension(file);
 }
 
 TriangleSoup load_mesh(const std::filesystem::path& file, std::vector<std::string>* warnings) {
   const std::string name = file.string();
   const Format* format = find_format(file);
-  if (!format)
+  if (!format && !is_assimp_extension(file))
     fail("{}: unsupported mesh format '{}' (supported: {})", name, file.extension().string(),
          mesh_extensions());
   std::error_code ec;
@@ -86,10 +89,12 @@ TriangleSoup load_mesh(const std::filesystem::path& file, std::vector<std::strin
 
   std::vector<std::string> notes;
   PolygonMesh mesh;
-  {
+  if (format) {
     const FileBytes data(file);
     if (data.view().empty()) fail("{}: the file is empty", name);
     mesh = format->read(name, data.view(), notes);
+  } else {
+    mesh = read_with_assimp(file);
   }
   TriangulationReport report;
   TriangleSoup soup = to_soup(mesh, report);

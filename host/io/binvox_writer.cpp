@@ -103,12 +103,7 @@ fs::path write_binvox(const VoxelGrid& grid, const fs::path& out) {
 
   AtomicFile file(out);
   const glm::dvec3 corner = spec.anchor + glm::dvec3(spec.origin);
-  file.write(fmt::format("#binvox 1
-dim {} {} {}
-translate {} {} {}
-scale {}
-data
-", d, d, d, corner.x,
+  file.write(fmt::format("#binvox 1\ndim {} {} {}\ntranslate {} {} {}\nscale {}\ndata\n", d, d, d, corner.x,
                          corner.y, corner.z, float(d) * spec.voxel_size));
 
   // binvox walks x slowest and y fastest, across voxr's x-fastest layout. For each block of 64 x-values
