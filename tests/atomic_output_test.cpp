@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_support.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "test_support.h"
@@ -29,12 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::TempDir;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test::slurp;
 
 std::set<std::string> listing(const fs::path& dir) {
   std::set<std::string> names;

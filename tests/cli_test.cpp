@@ -13,46 +13,26 @@
 #include <fstream>
 #include <sstream>
 
+#include "cli_support.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code;
-  std::string out, err;
-};
+using Result = voxr::test::CliResult;
+using voxr::test::scratch;
+using voxr::test::slurp;
 
-// One folder per test process: ctest runs tests in parallel processes that must not share files.
-fs::path scratch() {
-  const fs::path dir = fs::path(testing::TempDir()) / ("voxr_cli_test_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// Runs voxr with `args`, environment assignments `env` ("A=1 B=2") prefixed.
 Result run_with_env(const std::string& env, const std::string& args) {
-  const fs::path out = scratch() / "stdout.txt", err = scratch() / "stderr.txt";
-  const std::string cmd =
-      env + " " + std::string(VOXR_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+  return voxr::test::run_voxr(args, env);
 }
 
 Result run(const std::string& args) {
-  return run_with_env("", args);
+  return voxr::test::run_voxr(args);
 }
 
 fs::path write_file(const std::string& name, const std::string& content) {
-  const fs::path p = scratch() / name;
-  std::ofstream(p, std::ios::binary) << content;
-  return p;
+  return voxr::test::write_scratch_file(name, content);
 }
 
 void expect_one_line_error(const Result& r, const std::string& needle) {

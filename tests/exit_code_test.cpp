@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli_support.h"
 #include "test_support.h"
 
 namespace voxr {
@@ -16,30 +17,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
+using Result = test::CliResult;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// Runs `voxr ARGS` through the shell (arguments are the test's own, no quoting needed).
 Result run(const std::string& args) {
-  const test::TempDir dir;
-  const fs::path out = dir.path() / "stdout.txt", err = dir.path() / "stderr.txt";
-  const std::string cmd =
-      std::string(VOXR_CLI_PATH) + " " + args + " >" + out.string() + " 2>" + err.string() + " </dev/null";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+  return test::run_voxr(args);
 }
 
 int lines(const std::string& text) {
-  return int(std::count(text.begin(), text.end(), '\n'));
+  return test::count_lines(text);
 }
 
 // Exit 2, one line naming `needle` and pointing at `help` ("voxr voxelize --help").
