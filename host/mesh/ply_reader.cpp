@@ -271,6 +271,8 @@ PolygonMesh read_ply(const std::string& name, std::string_view bytes) {
   BodyReader r(name, bytes.substr(std::min(h.bytes, bytes.size())), h.format, h.lines + 1);
   std::vector<uint32_t> corners;
   for (const PlyElement& e : h.elements) {
+    // An element without properties takes no bytes, whatever count the header gives it (up to 2^64 - 1).
+    if (e.properties.empty()) continue;
     const bool is_vertex = &e == &*vertex_element, is_face = e.name == "face";
     const int index_list = is_face ? find_property(e, {"vertex_indices", "vertex_index"}) : -1;
     for (size_t i = 0; i < e.count; ++i) {
