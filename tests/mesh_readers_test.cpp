@@ -473,6 +473,36 @@ std::string ply_error(const std::string& bytes) {
   return error_of([&] { return read_ply("bad.ply", bytes); });
 }
 
+// ASCII: a header that declares fewer properties than the lines hold would shift every later value; the
+// line, element and index are named instead.
+TEST(MeshReadersPly, AsciiRowWithMoreValuesThanPropertiesFails) {
+  const Mesh m = simple_mesh();
+  const PlyFile file = write_ply(
+      PlyFormat::kAscii,
+      {vertex_element(
+           m, {scalar("x", Ty::kF32), scalar("y", Ty::kF32), scalar("z", Ty::kF32), scalar("nx", Ty::kF32)}),
+       face_element(m, {list("vertex_indices", Ty::kU8, Ty::kI32), scalar("material_index", Ty::kI32)})});
+  auto without = [&](const std::string& line) {
+    std::string s = file.bytes;
+    s.erase(s.find(line), line.size());
+    return s;
+  };
+  // Header lines 1-10 (11 with nx): vertices from line 12, faces from line 18.
+  expect_message(ply_error(without("property float nx\n")), "bad.ply",
+                 {"line 11: vertex 0 of 6 has more values than its 3 properties"});
+  expect_message(ply_error(without("property int material_index\n")), "bad.ply",
+                 {"line 17: face 0 of 5 has more values than its 1 properties"});
+  std::string one = file.bytes;  // one extra value on the line of vertex 3
+  size_t at = file.body;
+  for (int row = 0; row < 4; ++row) at = one.find('\n', at) + 1;
+  one.insert(at - 1, " 7");
+  expect_message(ply_error(one), "bad.ply", {"line 15: vertex 3 of 6 has more values than its 4 properties"});
+  // Spaces, tabs and CR at line ends are no values.
+  std::string spaces = file.bytes;
+  spaces.insert(at - 1, " \t \r");
+  EXPECT_EQ(check(m, [&] { return read_ply("t.ply", spaces); }), "");
+}
+
 // Header errors: each names the element and property.
 TEST(MeshReadersPly, HeaderErrorsNameElementAndProperty) {
   const Mesh m = simple_mesh();
@@ -635,9 +665,12 @@ TEST(MeshReadersPly, HugeCountsWithTinyBodyFailFast) {
     const auto start = std::chrono::steady_clock::now();
     expect_message(ply_error(with_count("vertex", "4000000000")), "bad.ply",
                    {"4000000000 vertices are more than voxr can index"}, ctx);
-    // The faces' bytes are read as vertices until the body ends.
+    // The faces' values are read as vertices until the body ends (or, in ASCII, a face line holds more
+    // values than a vertex has).
     expect_message(ply_error(with_count("vertex", "2000000000")), "bad.ply",
-                   {" of 2000000000, property '", "': the file ends here"}, ctx);
+                   {f == PlyFormat::kAscii ? "vertex 6 of 2000000000 has more values than its 3 properties"
+                                           : "of 2000000000, property 'z': the file ends here"},
+                   ctx);
     expect_message(ply_error(with_count("face", "4000000000")), "bad.ply",
                    {"face 5 of 4000000000, property 'vertex_indices': the file ends here"}, ctx);
     expect_message(ply_error(with_count("vertex", "99999999999999999999999")), "bad.ply",

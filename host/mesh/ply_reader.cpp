@@ -80,6 +80,16 @@ class BodyReader {
     return uint64_t(v);
   }
 
+  // ASCII: an element's values end its line; more values there mean the header declares fewer properties
+  // than the body holds, and reading on would shift every value after them.
+  void end_row() {
+    if (format_ != Format::kAscii) return;
+    while (p_ != end_ && text::is_space(*p_)) ++p_;
+    if (p_ != end_ && *p_ != '\n')
+      fail("{}: line {}: {} {} of {} has more values than its {} properties", name_, line_, element_->name,
+           index_, element_->count, element_->properties.size());
+  }
+
   [[noreturn]] void fault(const std::string& what) const {
     const std::string where = format_ == Format::kAscii ? fmt::format("line {}: ", line_) : std::string();
     fail("{}: {}{} {} of {}, property '{}': {}", name_, where, element_->name, index_, element_->count,
@@ -302,6 +312,7 @@ PolygonMesh read_ply(const std::string& name, std::string_view bytes) {
         }
         mesh.add_face(corners.data(), uint32_t(n));
       }
+      r.end_row();
       if (is_vertex) mesh.positions.push_back(p);
     }
   }
