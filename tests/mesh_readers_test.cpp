@@ -676,13 +676,15 @@ TEST(MeshReadersPly, HugeCountsWithTinyBodyFailFast) {
     expect_message(ply_error(with_count("vertex", "99999999999999999999999")), "bad.ply",
                    {"line 3: the element count '99999999999999999999999' is not a non-negative integer"},
                    ctx);
-    // An element without properties takes no bytes, so any count of it is consistent, and quick.
+    // An element without properties takes no bytes, so any count of it is consistent, and quick (reading
+    // took 10 s per 4e9 before, and 2^64 - 1 would never end: tried only once 4e9 passed).
     std::string empty = bytes;
-    empty.insert(empty.find("element face"),
-                 "element nothing 4000000000\nelement void 18446744073709551615\n");
+    empty.insert(empty.find("element face"), "element nothing 4000000000\n");
     EXPECT_EQ(check(m, [&] { return read_ply("t.ply", empty); }), "") << ctx;
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_LT(seconds, 0.5) << ctx;
+    ASSERT_LT(seconds, 0.5) << ctx;
+    empty.insert(empty.find("element face"), "element void 18446744073709551615\n");
+    EXPECT_EQ(check(m, [&] { return read_ply("t.ply", empty); }), "") << ctx;
   }
 }
 
