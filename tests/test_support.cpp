@@ -83,7 +83,7 @@ TriangleSoup random_soup(uint32_t seed, size_t count, float lo, float hi, float 
 GridSpec fitted(const TriangleSoup& soup, uint32_t res) {
   GridRequest r;
   r.resolution = res;
-  return fit_grid(soup.bounds(), r);
+  return fit_grid(soup.bounds(), r, soup.anchor);
 }
 
 GridSpec unit_grid(glm::uvec3 dims) {

@@ -57,9 +57,6 @@ glm::dvec3 choose_anchor(const glm::dvec3& lo, const glm::dvec3& hi) {
   const glm::dvec3 size = glm::max(hi - lo, glm::dvec3(0.0));
   const double longest = std::max({size.x, size.y, size.z});
   const double scale = longest > 0.0 ? std::exp2(std::ceil(std::log2(longest))) : 1.0;
-  const double reach = std::max(
-      {std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
-  if (!(reach > 2.0 * scale)) return glm::dvec3(0.0);
   return glm::floor(lo / scale) * scale;
 }
 

@@ -52,10 +52,10 @@ struct TriangleSoup {
               uint32_t material = kKeepMaterial);
 };
 
-// The anchor for world positions within [lo, hi]: 0 when the box lies within two of its sizes of the origin
-// (float positions lose nothing there), else the box's corner rounded down to a multiple of the power of two
-// at or above its size, so that translating a mesh by such multiples translates the anchor and leaves the
-// float positions bit for bit the same.
+// The anchor for world positions within [lo, hi]: lo rounded down to a multiple of the power of two at or
+// above the box's size, so positions relative to it lie in [0, 2 size) (float keeps 2^-23 of the size), and
+// translating a mesh by a multiple of that power of two moves the anchor by exactly the translation and
+// leaves the float positions bit for bit the same.
 glm::dvec3 choose_anchor(const glm::dvec3& lo, const glm::dvec3& hi);
 
 // Throws voxr::Error naming `source` when the soup is empty, an index is out of range or a vertex that a

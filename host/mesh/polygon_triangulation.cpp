@@ -142,7 +142,17 @@ void triangulate(const PolygonMesh& mesh, HostArray<glm::uvec4>& out, Triangulat
       normal += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
       centre += a;
     }
-    const double length = glm::length(normal);
+    double length = glm::length(normal);
+    if (!(length > 0.0)) {
+      // Lobes of opposite winding cancel (a bow tie): take the plane from the largest corner triangle.
+      for (uint32_t k = 1; k + 1 < n; ++k) {
+        const glm::dvec3 cross = glm::cross(pos[c[k]] - origin, pos[c[k + 1]] - origin);
+        if (glm::length(cross) > length) {
+          normal = cross;
+          length = glm::length(cross);
+        }
+      }
+    }
     if (!(length > 0.0)) {  // all corners on a line: no area either way
       fan();
       continue;
