@@ -25,7 +25,9 @@ build=${1:-build-asan}
 #   reported as a plain SEGV.
 # - check_initialization_order, strict_string_checks: cheap extra checks, off by default.
 export ASAN_OPTIONS="detect_leaks=1:use_sigaltstack=0:check_initialization_order=1:strict_string_checks=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
-export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
+# print_suppressions=0: otherwise LSan appends a "Suppressions used" table to stderr whenever one matched,
+# which the CLI tests read (they expect exactly the one-line error voxr prints).
+export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 export UBSAN_OPTIONS="print_stacktrace=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DVOXR_SANITIZE=ON -DVOXR_BUILD_BENCH=OFF \
