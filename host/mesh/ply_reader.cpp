@@ -273,6 +273,7 @@ PolygonMesh read_ply(const std::string& name, std::string_view bytes) {
   for (const PlyElement& e : h.elements) {
     const bool is_vertex = &e == &*vertex_element, is_face = e.name == "face";
     const int index_list = is_face ? find_property(e, {"vertex_indices", "vertex_index"}) : -1;
+    if (e.properties.empty()) continue;  // holds no bytes, however many it claims
     for (size_t i = 0; i < e.count; ++i) {
       glm::dvec3 p(0.0);
       for (size_t k = 0; k < e.properties.size(); ++k) {

@@ -1,0 +1,67 @@
+// Inputs the mesh fuzzers (fuzz/, scripts/fuzz.sh) found or pointed at, each read the way voxr reads files
+// (load_mesh on a file in a temporary folder): each ends in the right mesh or a one-line voxr::Error that
+// starts with the file path, promptly and without reserving memory a header merely claims.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+
+#include "core/error.h"
+#include "core/mesh_loader.h"
+#include "test_support.h"
+
+namespace voxr {
+namespace {
+
+namespace fs = std::filesystem;
+
+// load_mesh's error for `content` written to `name`, or "no error".
+std::string load_error(const test::TempDir& dir, const std::string& name, const std::string& content) {
+  const fs::path file = dir.write(name, content);
+  try {
+    load_mesh(file);
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(file.string() + ": ", 0), 0u) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    return message;
+  }
+  return "no error";
+}
+
+const char* const kCubeAsciiPlyBody =
+    "0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n"
+    "4 0 4 6 2\n4 1 3 7 5\n4 0 1 5 4\n4 2 6 7 3\n4 0 2 3 1\n4 4 5 7 6\n";
+
+// The seed corpus of the fuzzers is a valid file in every format (else the fuzzers would start from errors).
+TEST(MeshFuzzRegressions, SeedCorpusLoads) {
+  const fs::path corpus = fs::path(VOXR_SOURCE_DIR) / "fuzz" / "corpus";
+  size_t files = 0;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(corpus)) {
+    if (!e.is_regular_file()) continue;
+    SCOPED_TRACE(e.path().string());
+    const TriangleSoup soup = load_mesh(e.path());
+    EXPECT_EQ(soup.triangle_count(), e.path().stem() == "concave" ? 4u : 12u);
+    ++files;
+  }
+  EXPECT_EQ(files, 11u);
+}
+
+// PLY: an element without properties holds no bytes, but the reader counted through its 2^64 - 1 instances
+// (a hang).
+TEST(MeshFuzzRegressions, PlyElementWithoutPropertiesIsSkipped) {
+  test::TempDir dir;
+  const std::string ply = std::string(
+                              "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
+                              "property float z\nelement nothing 18446744073709551615\nelement face 6\n"
+                              "property list uchar int vertex_indices\nend_header\n") +
+                          kCubeAsciiPlyBody;
+  const auto start = std::chrono::steady_clock::now();
+  const TriangleSoup soup = load_mesh(dir.write("empty_element.ply", ply));
+  EXPECT_EQ(soup.triangle_count(), 12u);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
+}
+
+}  // namespace
+}  // namespace voxr
