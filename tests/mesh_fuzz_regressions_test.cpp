@@ -63,5 +63,20 @@ TEST(MeshFuzzRegressions, PlyElementWithoutPropertiesIsSkipped) {
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
 }
 
+// OFF and PLY reserved up to 2^24 vertices (and OFF 2^24 faces) on a header's word: a 23-byte file took
+// 670 MB of address space (402 MB in one allocation, which libFuzzer's -malloc_limit_mb=100 reports). They
+// now reserve only what the bytes after the header can hold, and fail on the truncation as before.
+TEST(MeshFuzzRegressions, HugeHeaderCountsReserveNothing) {
+  test::TempDir dir;
+  EXPECT_NE(load_error(dir, "counts.off", "OFF\n99999999 99999999 0\n")
+                .find("declares 99999999 vertices but ends after 0"),
+            std::string::npos);
+  const std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 99999999\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n";
+  EXPECT_NE(load_error(dir, "counts.ply", ply).find("vertex 0 of 99999999, property 'x': the file ends here"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace voxr
