@@ -19,9 +19,10 @@ targets=("$@")
 build=${VOXR_FUZZ_BUILD:-build-fuzz}
 parallel=${VOXR_FUZZ_PARALLEL:-1}
 
+mkdir -p "$build"
 CC=${CC:-clang} CXX=${CXX:-clang++} cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DVOXR_BUILD_FUZZERS=ON -DVOXR_BUILD_TESTS=OFF -DVOXR_BUILD_BENCH=OFF -DVOXR_BUILD_VIEWER=OFF \
-  -DVOXR_WITH_OPENVDB=OFF > "$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
+  -DVOXR_WITH_OPENVDB=OFF > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
 cmake --build "$build" -j"${VOXR_FUZZ_JOBS:-2}" --target "${targets[@]/#/fuzz_}"
 
 seeds_of() {  # seed folder and dictionary of a target
@@ -29,6 +30,7 @@ seeds_of() {  # seed folder and dictionary of a target
 }
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 run_target() {
   local t=$1 format
@@ -42,7 +44,6 @@ run_target() {
     > "$log" 2>&1 || true
 }
 
-mkdir -p "$build"
 touch "$build/run.start"  # findings of this run are newer than this
 pids=()
 for t in "${targets[@]}"; do
