@@ -92,5 +92,18 @@ TEST(MeshFuzzRegressions, GltfBadBase64IsAnError) {
   EXPECT_NE(load_error(dir, "bad_base64.gltf", gltf).find(": cannot read: "), std::string::npos);
 }
 
+// glTF (through Assimp) had no bound on coordinates: the fuzzers found positions that were infinite or NaN
+// after the node transforms, which went on into the triangulation (CGAL) before anything checked them, and
+// a cube 3e38 units away loaded. read_with_assimp now refuses them as voxr's own readers do.
+TEST(MeshFuzzRegressions, GltfCoordinatesBeyondRangeAreAnError) {
+  std::ifstream in(fs::path(VOXR_SOURCE_DIR) / "fuzz" / "corpus" / "gltf" / "cube.gltf", std::ios::binary);
+  std::string gltf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t at = gltf.find("\"translation\":[1,0,0]");
+  ASSERT_NE(at, std::string::npos);
+  gltf.replace(at, 21, "\"translation\":[3e38,0,0]");
+  test::TempDir dir;
+  EXPECT_NE(load_error(dir, "far.gltf", gltf).find("vertex 0 is not finite or too large"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace voxr
