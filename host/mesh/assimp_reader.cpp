@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <exception>
 #include <string>
 #include <system_error>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "mesh/text_scan.h"
 
 namespace voxr {
 namespace {
@@ -55,8 +57,11 @@ struct Skipped {
   size_t lines = 0;
 };
 
-// Appends one instance of `mesh` under the world transform `world`.
-void append_instance(const aiMesh& mesh, const glm::dmat4& world, PolygonMesh& out, Skipped& skipped) {
+// Appends one instance of `mesh` under the world transform `world`. Like voxr's own readers, it refuses
+// positions that are not finite or beyond text::kMaxCoordinate (the triangulation and the soup need them
+// finite).
+void append_instance(const std::string& name, const aiMesh& mesh, const glm::dmat4& world, PolygonMesh& out,
+                     Skipped& skipped) {
   const auto base = uint32_t(out.positions.size());
   const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
   bool any_face = false;
@@ -76,7 +81,12 @@ void append_instance(const aiMesh& mesh, const glm::dmat4& world, PolygonMesh& o
   out.positions.reserve(out.positions.size() + mesh.mNumVertices);
   for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
     const aiVector3D& p = mesh.mVertices[v];
-    out.positions.push_back(glm::dvec3(world * glm::dvec4(double(p.x), double(p.y), double(p.z), 1.0)));
+    const glm::dvec3 w(world * glm::dvec4(double(p.x), double(p.y), double(p.z), 1.0));
+    if (!(std::abs(w.x) <= text::kMaxCoordinate && std::abs(w.y) <= text::kMaxCoordinate &&
+          std::abs(w.z) <= text::kMaxCoordinate))
+      fail("{}: mesh '{}' vertex {} is not finite or too large ({}, {}, {}) after its node transforms", name,
+           text::printable(mesh.mName.C_Str()), v, w.x, w.y, w.z);
+    out.positions.push_back(w);
   }
 }
 
@@ -127,7 +137,7 @@ PolygonMesh read_with_assimp(const fs::path& file) {
       stack.pop_back();
       const glm::dmat4 world = parent * to_dmat4(node->mTransformation);
       for (unsigned i = 0; i < node->mNumMeshes; ++i)
-        append_instance(*scene->mMeshes[node->mMeshes[i]], world, out, skipped);
+        append_instance(name, *scene->mMeshes[node->mMeshes[i]], world, out, skipped);
       // Children pushed in reverse so instances come out in the file's order.
       for (unsigned c = node->mNumChildren; c-- > 0;) stack.emplace_back(node->mChildren[c], world);
     }

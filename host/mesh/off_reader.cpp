@@ -16,11 +16,13 @@ using text::printable;
 
 // What an OFF body has promised and what has been read of it.
 struct OffBody {
-  OffBody(const std::string& file, size_t vertex_count, size_t vertex_lines, size_t face_lines)
+  // `bytes`: the size of the text to read. Headers can lie: reserve only what that text can hold (a vertex
+  // line "0 0 0" takes 6 bytes, a face line "3 0 1 2" 8).
+  OffBody(const std::string& file, size_t vertex_count, size_t vertex_lines, size_t face_lines, size_t bytes)
       : name(file), vertices(vertex_count), wanted(vertex_lines), faces(face_lines) {
-    mesh.positions.reserve(std::min(wanted, size_t(1) << 24));  // headers can lie: cap what they reserve
-    mesh.face_sizes.reserve(std::min(faces, size_t(1) << 24));
-    mesh.indices.reserve(3 * std::min(faces, size_t(1) << 24));
+    mesh.positions.reserve(std::min(wanted, bytes / 6));
+    mesh.face_sizes.reserve(std::min(faces, bytes / 8));
+    mesh.indices.reserve(3 * std::min(faces, bytes / 8));
   }
   const std::string& name;
   size_t vertices;  // in the file: face indices are checked against it
@@ -259,7 +261,8 @@ PolygonMesh read_off(const std::string& name, std::string_view bytes) {
                                ? skip_lines_with_tokens(body.data(), end, vertices, face_number)
                                : nullptr;
   if (face_start) {
-    OffBody v(name, vertices, vertices, 0), f(name, vertices, 0, faces);
+    OffBody v(name, vertices, vertices, 0, size_t(face_start - body.data())),
+        f(name, vertices, 0, faces, size_t(end - face_start));
     std::exception_ptr face_error;
     std::thread face_reader([&] {
       try {
@@ -281,7 +284,7 @@ PolygonMesh read_off(const std::string& name, std::string_view bytes) {
     f.mesh.positions = std::move(v.mesh.positions);
     return std::move(f.mesh);
   }
-  OffBody b(name, vertices, vertices, faces);
+  OffBody b(name, vertices, vertices, faces, body.size());
   const char* rest = read_off_body(b, body.data(), end, number);
   check_off_end(b, rest, end, number);
   return std::move(b.mesh);

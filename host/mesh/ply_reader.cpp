@@ -276,9 +276,10 @@ PolygonMesh read_ply(const std::string& name, std::string_view bytes) {
   if (!has_faces) fail("{}: the PLY header declares no 'face' element", name);
 
   PolygonMesh mesh;
-  // Headers can lie: cap what they make us reserve.
-  mesh.positions.reserve(std::min(vertices, size_t(1) << 24));
-  BodyReader r(name, bytes.substr(std::min(h.bytes, bytes.size())), h.format, h.lines + 1);
+  const std::string_view body = bytes.substr(std::min(h.bytes, bytes.size()));
+  // Headers can lie: reserve only what the body can hold (a vertex takes 3 bytes or more).
+  mesh.positions.reserve(std::min(vertices, body.size() / 3));
+  BodyReader r(name, body, h.format, h.lines + 1);
   std::vector<uint32_t> corners;
   for (const PlyElement& e : h.elements) {
     // An element without properties takes no bytes, whatever count the header gives it (up to 2^64 - 1).
