@@ -14,7 +14,10 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.h"
+#include "mesh/file_bytes.h"
 #include "mesh/text_scan.h"
 
 namespace voxr {
@@ -90,6 +93,52 @@ void append_instance(const std::string& name, const aiMesh& mesh, const glm::dma
   }
 }
 
+// glTF JSON: an object with an "asset" whose version is 2.x.
+bool gltf_json(std::string_view text) {
+  const nlohmann::json j = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("asset") || !j["asset"].is_object()) return false;
+  const auto version = j["asset"].find("version");
+  return version != j["asset"].end() && version->is_string() &&
+         version->get<std::string>().rfind("2", 0) == 0;
+}
+
+uint32_t le32(std::string_view b, size_t at) {
+  uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = (v << 8) | uint8_t(b[at + i]);
+  return v;
+}
+
+// Assimp falls back to sniffing every importer when the one for the extension declines a file, and some of
+// them hang or allocate gigabytes on garbage (found by fuzzing: a 23-byte .gltf, an 83-byte .glb). So a file
+// must look like what its extension says before Assimp sees it: glTF JSON with asset.version 2; a GLB
+// header whose length is the file's and whose first chunk is that JSON; FBX's binary magic or an FBX
+// text header; a COLLADA document; a 3MF zip.
+void check_signature(const std::string& name, const std::string& ext, std::string_view b) {
+  std::string_view text = b.substr(b.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0);
+  while (!text.empty() && (text::is_space(text[0]) || text[0] == '\n')) text.remove_prefix(1);
+  auto refuse = [&](const char* what) { fail("{}: not {}", name, what); };
+  if (ext == ".gltf") {
+    if (!gltf_json(text)) refuse("glTF 2.0 JSON (an object with asset.version \"2.x\")");
+  } else if (ext == ".glb") {
+    if (b.size() < 20 || b.substr(0, 4) != "glTF" || le32(b, 4) != 2)
+      refuse("binary glTF 2.0 (no 'glTF' version 2 header)");
+    if (le32(b, 8) != b.size())
+      fail("{}: the binary glTF header gives a length of {} bytes but the file has {}", name, le32(b, 8),
+           b.size());
+    const uint32_t json_length = le32(b, 12);
+    if (b.substr(16, 4) != "JSON" || json_length > b.size() - 20 || !gltf_json(b.substr(20, json_length)))
+      refuse("binary glTF 2.0 (its first chunk is not glTF JSON)");
+  } else if (ext == ".fbx") {
+    if (b.rfind("Kaydara FBX Binary", 0) != 0 && text.substr(0, 4096).find("FBX") == std::string_view::npos)
+      refuse("FBX (neither the binary magic nor an FBX text header)");
+  } else if (ext == ".dae") {
+    if (text.empty() || text[0] != '<' || text.substr(0, 4096).find("<COLLADA") == std::string_view::npos)
+      refuse("COLLADA (no <COLLADA> element)");
+  } else if (ext == ".3mf") {
+    if (b.substr(0, 4) != std::string_view("PK\x03\x04", 4)) refuse("3MF (not a zip archive)");
+  }
+}
+
 }  // namespace
 
 bool is_assimp_extension(const fs::path& file) {
@@ -107,6 +156,7 @@ PolygonMesh read_with_assimp(const fs::path& file) {
   if (!fs::exists(file, ec)) fail("{}: no such file", name);
   if (!fs::is_regular_file(file, ec)) fail("{}: not a regular file", name);
   if (fs::file_size(file, ec) == 0) fail("{}: empty file", name);
+  check_signature(name, lower_extension(file), FileBytes(file).view());
 
   // One importer per call: Assimp::Importer is not shared between threads. No DefaultLogger is created,
   // so Assimp logs to its NullLogger and prints nothing.
