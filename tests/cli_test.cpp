@@ -143,6 +143,21 @@ TEST(Cli, KernelBuildFailureShowsTheLog) {
 
 namespace {
 
+TEST(Cli, EmptyVolumeIsWrittenWithAWarning) {
+  // A grid beside the mesh: the volume is empty, which is the right answer, but never a silent one.
+  const fs::path mesh = write_file("tetra-beside.obj", kTetra);
+  const fs::path out = scratch() / "beside.vox";
+  for (const std::string solid : {"", " --solid parity"}) {
+    const Result r =
+        run("voxelize " + mesh.string() + " --bounds 5,5,5,6,6,6 --res 8 -q -o " + out.string() + solid);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("warning: no voxel of the 8 x 8 x 8 grid touches"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(check --bounds)"), std::string::npos) << r.err;
+  }
+  const Result r = run("voxelize " + mesh.string() + " --res 8 -q -o " + out.string());
+  EXPECT_EQ(r.err, "");
+}
+
 TEST(Cli, SolidWritesTheInsideChannel) {
   const fs::path mesh = write_file("tetra7.obj", kTetra);
   const fs::path out = scratch() / "solid.nrrd", report = scratch() / "solid.json";

@@ -241,6 +241,10 @@ int run_voxelize(const VoxelizeArgs& args) {
   VoxelizeStats stats;
   const VoxelGrid result = voxelizer.run(soup, grid, options, &stats, &bounds);
   if (tty) fmt::print(stderr, "\r{:<40}\r", "");
+  // An empty volume is written (it is the right answer for a grid beside the mesh), never silently.
+  if (stats.voxels_set == 0 && stats.inside_voxels == 0)
+    fmt::print(stderr, "voxr: warning: no voxel of the {} x {} x {} grid touches {}{}\n", grid.dims.x,
+               grid.dims.y, grid.dims.z, scene.source, args.bounds.empty() ? "" : " (check --bounds)");
 
   std::vector<std::filesystem::path> written;
   if (!args.output.empty()) {

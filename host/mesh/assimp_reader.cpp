@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "mesh/corner_welder.h"
 #include "mesh/file_bytes.h"
 #include "mesh/text_scan.h"
 
@@ -64,24 +65,17 @@ struct Skipped {
 // positions that are not finite or beyond text::kMaxCoordinate (the triangulation and the soup need them
 // finite).
 void append_instance(const std::string& name, const aiMesh& mesh, const glm::dmat4& world, PolygonMesh& out,
-                     Skipped& skipped) {
-  const auto base = uint32_t(out.positions.size());
-  const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
+                     CornerWelder& welder, Skipped& skipped) {
   bool any_face = false;
-  std::vector<uint32_t> corners;
-  for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-    const aiFace& face = mesh.mFaces[f];
-    if (face.mNumIndices == 1) ++skipped.points;
-    if (face.mNumIndices == 2) ++skipped.lines;
-    if (face.mNumIndices < 3) continue;
-    corners.resize(face.mNumIndices);
-    for (unsigned c = 0; c < face.mNumIndices; ++c) corners[c] = base + face.mIndices[c];
-    if (mirrored) std::reverse(corners.begin(), corners.end());
-    out.add_face(corners.data(), uint32_t(corners.size()));
-    any_face = true;
+  for (unsigned f = 0; f < mesh.mNumFaces && !any_face; ++f) any_face = mesh.mFaces[f].mNumIndices >= 3;
+  if (!any_face) {  // a points- or lines-only mesh adds no vertices
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      skipped.points += mesh.mFaces[f].mNumIndices == 1;
+      skipped.lines += mesh.mFaces[f].mNumIndices == 2;
+    }
+    return;
   }
-  if (!any_face) return;  // a points- or lines-only mesh adds no vertices
-  out.positions.reserve(out.positions.size() + mesh.mNumVertices);
+  std::vector<uint32_t> id(mesh.mNumVertices);
   for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
     const aiVector3D& p = mesh.mVertices[v];
     const glm::dvec3 w(world * glm::dvec4(double(p.x), double(p.y), double(p.z), 1.0));
@@ -89,7 +83,19 @@ void append_instance(const std::string& name, const aiMesh& mesh, const glm::dma
           std::abs(w.z) <= text::kMaxCoordinate))
       fail("{}: mesh '{}' vertex {} is not finite or too large ({}, {}, {}) after its node transforms", name,
            text::printable(mesh.mName.C_Str()), v, w.x, w.y, w.z);
-    out.positions.push_back(w);
+    id[v] = welder.add(w);
+  }
+  const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
+  std::vector<uint32_t> corners;
+  for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+    const aiFace& face = mesh.mFaces[f];
+    if (face.mNumIndices == 1) ++skipped.points;
+    if (face.mNumIndices == 2) ++skipped.lines;
+    if (face.mNumIndices < 3) continue;
+    corners.resize(face.mNumIndices);
+    for (unsigned c = 0; c < face.mNumIndices; ++c) corners[c] = id[face.mIndices[c]];
+    if (mirrored) std::reverse(corners.begin(), corners.end());
+    out.add_face(corners.data(), uint32_t(corners.size()));
   }
 }
 
@@ -161,15 +167,12 @@ PolygonMesh read_with_assimp(const fs::path& file) {
   // One importer per call: Assimp::Importer is not shared between threads. No DefaultLogger is created,
   // so Assimp logs to its NullLogger and prints nothing.
   Assimp::Importer importer;
-  // Only positions matter here: dropping normals, UVs, colours, tangents and bone weights lets
-  // JoinIdenticalVertices merge corners by position, so per-face normals do not open a closed mesh.
-  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
-                              aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
-                                  aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS);
   // A file with bones and no meshes must not turn into a mesh of its skeleton.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
-  const unsigned flags =
-      aiProcess_ValidateDataStructure | aiProcess_RemoveComponent | aiProcess_JoinIdenticalVertices;
+  // Corners are merged by position here (CornerWelder), in double after the node transforms: per-face
+  // normals or UVs do not open a closed mesh, and Assimp's JoinIdenticalVertices (80-90 % of a large
+  // read) is not needed.
+  const unsigned flags = aiProcess_ValidateDataStructure;
   const aiScene* scene = nullptr;
   try {
     scene = importer.ReadFile(name, flags);
@@ -179,6 +182,9 @@ PolygonMesh read_with_assimp(const fs::path& file) {
   if (scene == nullptr) fail("{}: cannot read: {}", name, one_line(importer.GetErrorString()));
 
   PolygonMesh out;
+  size_t vertices = 0;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) vertices += scene->mMeshes[m]->mNumVertices;
+  CornerWelder welder(out, vertices);
   Skipped skipped;
   if (scene->mRootNode != nullptr) {
     std::vector<std::pair<const aiNode*, glm::dmat4>> stack{{scene->mRootNode, glm::dmat4(1.0)}};
@@ -187,7 +193,7 @@ PolygonMesh read_with_assimp(const fs::path& file) {
       stack.pop_back();
       const glm::dmat4 world = parent * to_dmat4(node->mTransformation);
       for (unsigned i = 0; i < node->mNumMeshes; ++i)
-        append_instance(name, *scene->mMeshes[node->mMeshes[i]], world, out, skipped);
+        append_instance(name, *scene->mMeshes[node->mMeshes[i]], world, out, welder, skipped);
       // Children pushed in reverse so instances come out in the file's order.
       for (unsigned c = node->mNumChildren; c-- > 0;) stack.emplace_back(node->mChildren[c], world);
     }

@@ -2,8 +2,8 @@
 // that a closed mesh is closed by index too (mesh_topology.h).
 #include <algorithm>
 #include <cstring>
-#include <unordered_map>
 
+#include "mesh/corner_welder.h"
 #include "mesh/mesh_readers.h"
 #include "mesh/text_scan.h"
 
@@ -12,36 +12,6 @@ namespace voxr {
 namespace {
 
 using text::printable;
-
-struct PositionHash {
-  size_t operator()(const glm::dvec3& p) const {
-    uint64_t h = 0x9e3779b97f4a7c15ull, bits;
-    for (int c = 0; c < 3; ++c) {
-      const double v = p[c] == 0.0 ? 0.0 : p[c];  // -0 and +0 are one position
-      std::memcpy(&bits, &v, sizeof bits);
-      h = (h ^ bits) * 0x100000001b3ull;
-      h ^= h >> 29;
-    }
-    return size_t(h);
-  }
-};
-
-// Collects corners, merging identical positions.
-class CornerWelder {
- public:
-  explicit CornerWelder(PolygonMesh& mesh, size_t corners) : mesh_(mesh) {
-    ids_.reserve(std::min(corners, size_t(1) << 24) / 4);
-  }
-  uint32_t add(const glm::dvec3& p) {
-    const auto [it, added] = ids_.try_emplace(p, uint32_t(mesh_.positions.size()));
-    if (added) mesh_.positions.push_back(p);
-    return it->second;
-  }
-
- private:
-  PolygonMesh& mesh_;
-  std::unordered_map<glm::dvec3, uint32_t, PositionHash> ids_;
-};
 
 bool looks_ascii(std::string_view bytes) {
   size_t i = 0;
@@ -56,7 +26,7 @@ bool looks_ascii(std::string_view bytes) {
 
 PolygonMesh read_binary(const std::string& name, std::string_view bytes, uint32_t triangles) {
   PolygonMesh mesh;
-  CornerWelder welder(mesh, 3 * size_t(triangles));
+  CornerWelder welder(mesh, size_t(triangles) / 2);  // a closed mesh has about T/2 vertices
   mesh.indices.reserve(3 * size_t(triangles));
   mesh.face_sizes.assign(triangles, 3);
   for (uint32_t t = 0; t < triangles; ++t) {
@@ -76,7 +46,7 @@ PolygonMesh read_binary(const std::string& name, std::string_view bytes, uint32_
 
 PolygonMesh read_ascii(const std::string& name, std::string_view bytes) {
   PolygonMesh mesh;
-  CornerWelder welder(mesh, bytes.size() / 40);
+  CornerWelder welder(mesh, bytes.size() / 500);  // about 250 bytes of text per triangle
   text::Lines lines(bytes);
   std::string_view line;
   std::vector<std::string_view> tokens;
