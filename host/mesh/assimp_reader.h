@@ -18,13 +18,14 @@ bool is_assimp_extension(const std::filesystem::path& file);
 // Every polygon face of every mesh instance in `file`'s node hierarchy, in world units (the file's units;
 // Collada's <unit> and up axis are applied by Assimp as a root transform), each instance transformed by
 // its node's accumulated transform in double. A mesh referenced by n nodes appears n times. Faces keep
-// their corner count (no triangulation); vertices identical in position within one mesh instance are
-// joined, so a closed mesh stays closed by index. Winding is reversed under mirroring transforms so faces
-// keep their orientation. Points and lines are skipped (they have no area); skinning, morph targets and
+// their corner count (no triangulation); corners at identical positions are merged (CornerWelder, over the
+// whole file), so a closed mesh stays closed by index. Winding is reversed under mirroring transforms so
+// faces keep their orientation. Points and lines are skipped (they have no area); skinning, morph targets and
 // animation are ignored (the bind pose is read). `materials` stays empty.
-// Throws voxr::Error, one line starting with the path: missing or empty file, unknown extension, a file
-// Assimp cannot parse or validate (with Assimp's message), or no polygon faces (with the points and
-// lines skipped).
+// Throws voxr::Error, one line starting with the path: missing or empty file, unknown extension, a file that
+// does not look like its format (checked before Assimp sees it), a file Assimp cannot parse or validate (with
+// Assimp's message), a position that is not finite or beyond 1e30 after its transforms, or no polygon faces
+// (with the points and lines skipped).
 PolygonMesh read_with_assimp(const std::filesystem::path& file);
 
 }  // namespace voxr
