@@ -21,6 +21,7 @@
 #include "cli/process.h"
 #include "core/clock.h"
 #include "core/default_scene.h"
+#include "core/mesh_loader.h"
 #include "core/mesh_topology.h"
 #include "core/scene.h"
 #include "io/atomic_file.h"
@@ -304,14 +305,17 @@ int run_voxelize(const VoxelizeArgs& args) {
 
 Command add_voxelize(CLI::App& app) {
   auto args = std::make_shared<VoxelizeArgs>();
-  CLI::App* sub = app.add_subcommand("voxelize", "Voxelize a mesh (OBJ/OFF/PLY/STL) or a scene (.json)");
-  sub->add_option("input", args->input, "mesh or scene file; omitted: the built-in default scene");
+  CLI::App* sub = app.add_subcommand("voxelize", "Voxelize a mesh or a scene (.json)");
+  sub->add_option("input", args->input,
+                  "mesh (" + mesh_extensions() + ") or scene file; omitted: the built-in default scene");
   sub->add_option("-o,--output", args->output,
                   "output volume: .nrrd, .vti, .binvox (cubic: --res N gives N^3), .vox (<=256)");
   sub->add_option("--res", args->res, "voxels along the longest axis of the scene bounds (default 256)")
       ->check(CLI::Range(1u, kMaxGridDim));
   sub->add_option("--dims", args->dims, "exact grid dimensions X,Y,Z");
-  sub->add_option("--bounds", args->bounds, "world box x0,y0,z0,x1,y1,z1 (default: scene bounds + margin)");
+  sub->add_option(
+      "--bounds", args->bounds,
+      "world box x0,y0,z0,x1,y1,z1, used exactly (default: the scene bounds with a quarter-voxel margin)");
   std::string methods;
   for (const MethodInfo& info : kMethods)
     methods += fmt::format("{}{} ({})", methods.empty() ? "" : "; ", info.name, info.summary);
