@@ -117,6 +117,16 @@ std::string under_xvfb(const std::string& args) {
   return fmt::format("{} -a -s '-screen 0 1280x1024x24' {} {}", quoted(VOXR_XVFB_RUN), viewer(), args);
 }
 
+// Removes a suite's folder, kept after a failure or with VOXR_VIEW_TEST_KEEP set, to look at the pictures.
+void remove_unless_failed(const fs::path& dir) {
+  std::error_code ec;
+  if (::testing::UnitTest::GetInstance()->current_test_suite()->failed_test_count() == 0 &&
+      !std::getenv("VOXR_VIEW_TEST_KEEP"))
+    fs::remove_all(dir, ec);
+  else
+    std::printf("voxr-view test files kept in %s\n", dir.c_str());
+}
+
 class ViewerTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -133,15 +143,7 @@ class ViewerTest : public ::testing::Test {
     write_volume(turned, dir_ / "turned.nrrd");
     write_box_obj(dir_ / "box.obj");
   }
-  static void TearDownTestSuite() {
-    // Kept after a failure, or with VOXR_VIEW_TEST_KEEP set, to look at the pictures.
-    std::error_code ec;
-    if (::testing::UnitTest::GetInstance()->current_test_suite()->failed_test_count() == 0 &&
-        !std::getenv("VOXR_VIEW_TEST_KEEP"))
-      fs::remove_all(dir_, ec);
-    else
-      std::printf("voxr-view test files kept in %s\n", dir_.c_str());
-  }
+  static void TearDownTestSuite() { remove_unless_failed(dir_); }
   static fs::path dir_;
 };
 
@@ -386,14 +388,7 @@ class SmallGridTest : public ::testing::TestWithParam<glm::uvec3> {
     dir_ = fs::temp_directory_path() / fmt::format("voxr_view_small_{}", ::getpid());
     fs::create_directories(dir_);
   }
-  static void TearDownTestSuite() {
-    std::error_code ec;
-    if (::testing::UnitTest::GetInstance()->current_test_suite()->failed_test_count() == 0 &&
-        !std::getenv("VOXR_VIEW_TEST_KEEP"))
-      fs::remove_all(dir_, ec);
-    else
-      std::printf("voxr-view test files kept in %s\n", dir_.c_str());
-  }
+  static void TearDownTestSuite() { remove_unless_failed(dir_); }
   static fs::path dir_;
 };
 

@@ -38,12 +38,7 @@ PolygonMesh read_obj(const std::string& name, std::string_view bytes) {
     text::split(line, '#', tokens);
     if (tokens.empty()) continue;
     if (tokens[0] == "v") {
-      if (tokens.size() < 4) fail("{}: line {}: a vertex needs three coordinates", name, number);
-      glm::dvec3 p;
-      for (int c = 0; c < 3; ++c)
-        if (!text::parse_number(tokens[c + 1], p[c]))
-          fail("{}: line {}: vertex coordinate '{}' is not a finite number", name, number,
-               printable(tokens[c + 1]));
+      const glm::dvec3 p = text::parse_vertex(name, number, tokens);
       if (mesh.positions.size() >= (size_t(1) << 31))
         fail("{}: line {}: more vertices than voxr can index", name, number);
       mesh.positions.push_back(p);

@@ -11,7 +11,6 @@ namespace voxr {
 
 namespace {
 
-using text::printable;
 
 bool looks_ascii(std::string_view bytes) {
   size_t i = 0;
@@ -63,13 +62,7 @@ PolygonMesh read_ascii(const std::string& name, std::string_view bytes) {
       loop.clear();
     } else if (tokens[0] == "vertex") {
       if (!in_loop) fail("{}: line {}: a vertex outside 'outer loop' ... 'endloop'", name, number);
-      if (tokens.size() < 4) fail("{}: line {}: a vertex needs three coordinates", name, number);
-      glm::dvec3 p;
-      for (int c = 0; c < 3; ++c)
-        if (!text::parse_number(tokens[c + 1], p[c]))
-          fail("{}: line {}: vertex coordinate '{}' is not a finite number", name, number,
-               printable(tokens[c + 1]));
-      loop.push_back(welder.add(p));
+      loop.push_back(welder.add(text::parse_vertex(name, number, tokens)));
     } else if (tokens[0] == "endloop") {
       if (!in_loop) fail("{}: line {}: 'endloop' without 'outer loop'", name, number);
       in_loop = false;

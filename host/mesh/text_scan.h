@@ -12,6 +12,8 @@
 #include <system_error>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "core/error.h"
 
 namespace voxr::text {
@@ -81,6 +83,18 @@ inline bool parse_number(std::string_view token, double& out) {
     return false;
   out = value;
   return true;
+}
+
+// The coordinates of a vertex line "<keyword> x y z ...": tokens[1..3] as numbers; fails naming the line.
+inline glm::dvec3 parse_vertex(const std::string& name, size_t line,
+                               const std::vector<std::string_view>& tokens) {
+  if (tokens.size() < 4) fail("{}: line {}: a vertex needs three coordinates", name, line);
+  glm::dvec3 p;
+  for (int c = 0; c < 3; ++c)
+    if (!parse_number(tokens[c + 1], p[c]))
+      fail("{}: line {}: vertex coordinate '{}' is not a finite number", name, line,
+           printable(tokens[c + 1]));
+  return p;
 }
 
 // A whole token as a non-negative integer that fits T; false otherwise.
