@@ -28,10 +28,17 @@ void write_bytes(const fs::path& path, const std::string& bytes) {
     fail("{}: cannot write the benchmark mesh", path.string());
 }
 
+// World positions (anchor + position), as the files voxr was given hold them.
+glm::dvec3 world(const TriangleSoup& s, const glm::vec4& p) {
+  return s.anchor + glm::dvec3(glm::vec3(p));
+}
+
 std::string as_off(const TriangleSoup& s) {
   std::string t = fmt::format("OFF\n{} {} 0\n", s.positions.size(), s.triangles.size());
-  for (const glm::vec4& p : s.positions)
-    fmt::format_to(std::back_inserter(t), "{:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
+  for (const glm::vec4& p : s.positions) {
+    const glm::vec3 w(world(s, p));
+    fmt::format_to(std::back_inserter(t), "{:.9g} {:.9g} {:.9g}\n", w.x, w.y, w.z);
+  }
   for (const glm::uvec4& f : s.triangles)
     fmt::format_to(std::back_inserter(t), "3 {} {} {}\n", f.x, f.y, f.z);
   return t;
@@ -39,8 +46,10 @@ std::string as_off(const TriangleSoup& s) {
 
 std::string as_obj(const TriangleSoup& s) {
   std::string t;
-  for (const glm::vec4& p : s.positions)
-    fmt::format_to(std::back_inserter(t), "v {:.9g} {:.9g} {:.9g}\n", p.x, p.y, p.z);
+  for (const glm::vec4& p : s.positions) {
+    const glm::vec3 w(world(s, p));
+    fmt::format_to(std::back_inserter(t), "v {:.9g} {:.9g} {:.9g}\n", w.x, w.y, w.z);
+  }
   for (const glm::uvec4& f : s.triangles)
     fmt::format_to(std::back_inserter(t), "f {} {} {}\n", f.x + 1, f.y + 1, f.z + 1);
   return t;
@@ -51,7 +60,10 @@ std::string as_ply(const TriangleSoup& s) {
       "ply\nformat binary_little_endian 1.0\nelement vertex {}\nproperty float x\nproperty float y\n"
       "property float z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
       s.positions.size(), s.triangles.size());
-  for (const glm::vec4& p : s.positions) t.append(reinterpret_cast<const char*>(&p), 12);
+  for (const glm::vec4& p : s.positions) {
+    const glm::vec3 w(world(s, p));
+    t.append(reinterpret_cast<const char*>(&w), 12);
+  }
   for (const glm::uvec4& f : s.triangles) {
     t.push_back(3);
     t.append(reinterpret_cast<const char*>(&f), 12);
@@ -66,7 +78,10 @@ std::string as_stl(const TriangleSoup& s) {
   const float normal[3] = {0, 0, 0};
   for (const glm::uvec4& f : s.triangles) {
     t.append(reinterpret_cast<const char*>(normal), 12);
-    for (int c = 0; c < 3; ++c) t.append(reinterpret_cast<const char*>(&s.positions[f[c]]), 12);
+    for (int c = 0; c < 3; ++c) {
+      const glm::vec3 w(world(s, s.positions[f[c]]));
+      t.append(reinterpret_cast<const char*>(&w), 12);
+    }
     t.append(2, '\0');
   }
   return t;

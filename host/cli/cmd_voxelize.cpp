@@ -185,11 +185,11 @@ int run_voxelize(const VoxelizeArgs& args) {
   Phases phases;
   auto load_start = Clock::now();
   if (tty) fmt::print(stderr, "\rreading {}...", args.input.empty() ? "the default scene" : args.input);
-  const Scene scene = args.input.empty() ? default_scene() : load_input(args.input);
+  Scene scene = args.input.empty() ? default_scene() : load_input(args.input);
   const char* cr = tty ? "\r" : "";
   for (const MeshInstance& m : scene.meshes)
     for (const std::string& w : m.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
-  TriangleSoup soup = scene_triangles(scene);
+  TriangleSoup soup = take_scene_triangles(scene);
   const size_t degenerate = validate_soup(soup, scene.source);
   const Bounds bounds = soup.bounds();
 

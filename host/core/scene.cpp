@@ -464,17 +464,35 @@ void extend_world(const MeshInstance& m, glm::dvec3& lo, glm::dvec3& hi) {
 
 }  // namespace
 
+namespace {
+
+// One mesh placed as it is: its soup is the scene's, anchor and positions bit for bit.
+bool single_mesh_as_is(const Scene& scene) {
+  return scene.meshes.size() == 1 && scene.meshes[0].transform == glm::mat4(1.0f);
+}
+
+}  // namespace
+
+TriangleSoup take_scene_triangles(Scene& scene) {
+  if (!single_mesh_as_is(scene)) return scene_triangles(scene);
+  MeshInstance& m = scene.meshes[0];
+  TriangleSoup out = std::move(m.soup);
+  m.soup = TriangleSoup();
+  if (m.material != TriangleSoup::kKeepMaterial)
+    for (glm::uvec4& t : out.triangles) t.w = m.material;
+  return out;
+}
+
 TriangleSoup scene_triangles(const Scene& scene) {
   TriangleSoup out;
   size_t vertices = 0, triangles = 0;
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  const bool as_is = single_mesh_as_is(scene);
   for (const MeshInstance& m : scene.meshes) {
     vertices += m.soup.positions.size();
     triangles += m.soup.triangles.size();
-    extend_world(m, lo, hi);
+    if (!as_is) extend_world(m, lo, hi);
   }
-  // One mesh placed as it is keeps its own anchor (and its positions bit for bit).
-  const bool as_is = scene.meshes.size() == 1 && scene.meshes[0].transform == glm::mat4(1.0f);
   out.anchor = as_is ? scene.meshes[0].soup.anchor : lo.x <= hi.x ? choose_anchor(lo, hi) : glm::dvec3(0.0);
   out.positions.reserve(vertices);
   out.triangles.reserve(triangles);

@@ -128,6 +128,10 @@ Scene load_input(const std::filesystem::path& input);
 // for the whole scene (choose_anchor).
 TriangleSoup scene_triangles(const Scene& scene);
 
+// The same triangles, taking the soup of a single mesh placed as it is instead of copying it (a 1 M-triangle
+// soup is 36 MB); that mesh's soup is left empty. For callers done with the scene's meshes.
+TriangleSoup take_scene_triangles(Scene& scene);
+
 // World-space bounds of all meshes (float: for framing cameras and lights).
 Bounds scene_bounds(const Scene& scene);
 

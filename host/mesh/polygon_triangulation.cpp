@@ -115,6 +115,16 @@ std::vector<std::string> TriangulationReport::warnings(const std::string& source
 
 void triangulate(const PolygonMesh& mesh, HostArray<glm::uvec4>& out, TriangulationReport& report) {
   const std::vector<glm::dvec3>& pos = mesh.positions;
+  // The common case, a mesh of triangles only, in one pass with no per-face work.
+  if (mesh.indices.size() == 3 * mesh.face_sizes.size() &&
+      std::all_of(mesh.face_sizes.begin(), mesh.face_sizes.end(), [](uint32_t n) { return n == 3; })) {
+    const size_t first = out.size();
+    out.resize(first + mesh.face_sizes.size());
+    const uint32_t* c = mesh.indices.data();
+    for (size_t f = 0; f < mesh.face_sizes.size(); ++f, c += 3)
+      out[first + f] = glm::uvec4(c[0], c[1], c[2], mesh.materials.empty() ? 0u : mesh.materials[f]);
+    return;
+  }
   std::vector<glm::dvec2> plane;
   size_t at = 0;
   for (size_t f = 0; f < mesh.face_sizes.size(); ++f) {
