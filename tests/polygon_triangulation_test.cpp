@@ -97,6 +97,26 @@ TEST(PolygonTriangulation, ConcavePolygonsAreCoveredExactly) {
   }
 }
 
+TEST(PolygonTriangulation, LargePolygonsStayExactAndFast) {
+  // Above 256 corners crossings are left to CGAL's insertion (the pairwise test is quadratic).
+  std::mt19937 rng(9);
+  const std::vector<glm::dvec2> star = random_star(rng, 5000);
+  expect_exact_cover(star, glm::dmat4(1.0), "5000-corner star");
+  std::vector<glm::dvec2> crossing = star;
+  std::swap(crossing[10], crossing[2500]);  // two long edges across the star
+  HostArray<glm::uvec4> triangles;
+  TriangulationReport report;
+  triangulate(polygon(crossing), triangles, report);
+  EXPECT_EQ(report.self_intersecting, 1u);
+  EXPECT_EQ(triangles.size(), crossing.size() - 2);
+  std::vector<glm::dvec2> repeated = star;
+  repeated[3000] = repeated[100];  // a corner twice: fanned, not indices lost
+  triangles.clear();
+  triangulate(polygon(repeated), triangles, report);
+  EXPECT_EQ(report.self_intersecting, 2u);
+  for (const glm::uvec4& t : triangles) EXPECT_LT(std::max({t.x, t.y, t.z}), repeated.size());
+}
+
 TEST(PolygonTriangulation, ConvexPolygonsAreFannedFromTheirFirstCorner) {
   std::vector<glm::dvec2> hexagon;
   for (int k = 0; k < 6; ++k) hexagon.push_back({std::cos(k * M_PI / 3), std::sin(k * M_PI / 3)});

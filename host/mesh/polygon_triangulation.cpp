@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <list>
+#include <stdexcept>
 
 namespace voxr {
 
@@ -93,6 +94,8 @@ bool convex(const std::vector<glm::dvec2>& p) {
   }
   return turning < 2.0 * M_PI + 1e-6;
 }
+
+constexpr uint32_t kPairwiseCorners = 256;
 
 }  // namespace
 
@@ -181,7 +184,9 @@ void triangulate(const PolygonMesh& mesh, HostArray<glm::uvec4>& out, Triangulat
       off_plane = std::max(off_plane, std::abs(glm::dot(d, normal)));
     }
     if (off_plane > 1e-3 * size && report.nonplanar++ == 0) report.first_nonplanar = f;
-    if (self_intersecting(plane)) {
+    // The pairwise crossing test is quadratic: above kPairwiseCorners, CGAL's insertion finds crossings
+    // instead (it throws on crossing constraints), so a 100 k-corner face costs n log n, not n^2.
+    if (n <= kPairwiseCorners && self_intersecting(plane)) {
       if (report.self_intersecting++ == 0) report.first_self_intersecting = f;
       fan();
       continue;
@@ -198,8 +203,10 @@ void triangulate(const PolygonMesh& mesh, HostArray<glm::uvec4>& out, Triangulat
       vertices[k]->info() = c[k];
     }
     try {
+      // A repeated corner position merges two vertices (their indices would be lost): a degenerate boundary.
+      if (cdt.number_of_vertices() != n) throw std::runtime_error("repeated corner");
       for (uint32_t k = 0; k < n; ++k) cdt.insert_constraint(vertices[k], vertices[(k + 1) % n]);
-    } catch (const std::exception&) {  // a crossing too close to call above
+    } catch (const std::exception&) {  // a crossing too close to call above, or of a face too large for it
       if (report.self_intersecting++ == 0) report.first_self_intersecting = f;
       fan();
       continue;
