@@ -3,6 +3,8 @@
 // measured errors of every mode against the winding-number reference on meshes with holes.
 #include <gtest/gtest.h>
 
+#include <bit>
+
 #include <cstdio>
 #include <map>
 #include <string>
@@ -14,6 +16,7 @@
 #include "core/error.h"
 #include "core/generators.h"
 #include "core/mesh_loader.h"
+#include "core/mesh_topology.h"
 #include "test_support.h"
 #include "voxelize/reference_inside.h"
 #include "voxelize/voxelizer.h"
@@ -393,6 +396,30 @@ TEST(SolidFill, StatsAndRepeatability) {
       EXPECT_GT(a.repair_iterations, 0u);
     }
   }
+}
+
+TEST(SolidFill, DuplicatedTrianglesFollowTheWindingNumber) {
+  // Case c20's kind: a closed box with one triangle listed twice. The generalized winding number, the
+  // reference, ignores the copy (inside where w >= 1/2 is the box's inside); column parity counts it and
+  // flips every column through it, so the copies are dropped first (drop_duplicate_triangles, as voxr
+  // voxelize does), and then parity is the reference exactly.
+  TriangleSoup box = test::box_soup(glm::vec3(0.05f), glm::vec3(0.95f, 0.83f, 0.71f));
+  const TriangleSoup closed = box;
+  box.triangles.push_back(box.triangles[2]);
+  GridRequest r;
+  r.resolution = 37;
+  r.bounds = WorldBox(glm::dvec3(-0.0123, -0.0234, -0.0345), glm::dvec3(1.0123, 1.0234, 1.0345));
+  const GridSpec grid = fit_grid(box.bounds(), r);
+  const std::vector<uint32_t> winding = reference_inside_winding_direct(box, grid);
+  EXPECT_EQ(compare_bits(winding, reference_inside_exact(closed, grid)).total(), 0u);
+  uint64_t inside = 0;
+  for (uint32_t w : winding) inside += uint64_t(std::popcount(w));
+  EXPECT_EQ(inside, 19251u);
+  SolidRunner solid;
+  EXPECT_GT(compare_bits(solid.run(box, grid, SolidMode::kParity).inside, winding).total(), 1000u);
+  TriangleSoup deduplicated = box;
+  EXPECT_EQ(drop_duplicate_triangles(deduplicated), 1u);
+  EXPECT_EQ(compare_bits(solid.run(deduplicated, grid, SolidMode::kParity).inside, winding).total(), 0u);
 }
 
 }  // namespace
