@@ -29,7 +29,9 @@ struct MeshTopology {
 // (an STL-like soup that repeats vertices is as closed as its geometry). Duplicates are judged as the
 // generalized winding number (inside where it is >= 1/2) judges them: a same-orientation copy changes no
 // inside, so it is counted in `duplicates` and left out of the edge counts; an opposite-orientation pair
-// cancels, so both are counted in `opposite_pairs` and left out.
+// cancels, so both are counted in `opposite_pairs` and left out. Welding and the duplicate search run only
+// when the edges by index are not closed (the common closed case costs one counting sort); a closed mesh
+// keeps duplicates that cancel in pairs, which parity handles as it should.
 MeshTopology mesh_topology(const TriangleSoup& soup, uint32_t material = TriangleSoup::kKeepMaterial);
 
 // Removes triangles that repeat an earlier triangle's corner positions in the same orientation (cyclic

@@ -40,7 +40,7 @@
 //     "grid": {"res": 256,                            voxels along the longest axis (1..16384), or
 //              "dims": [256, 128, 256],               exact dimensions (not both)
 //              "bounds": [x0, y0, z0, x1, y1, z1],    world box, x0 < x1 etc.; default: fitted to the scene
-//              "margin_voxels": 0.5}                  >= 0, around fitted bounds
+//              "margin_voxels": 0.25}                 >= 0, around fitted bounds (faces kept off ties)
 //   }
 //
 // Mesh file paths are relative to the scene file's folder. A path "$VOXR_MESH_DIR/NAME", or a relative path
