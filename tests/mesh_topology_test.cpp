@@ -210,6 +210,10 @@ TEST(MeshTopology, DuplicatesAreSetAsideAsTheWindingNumberDoes) {
   TriangleSoup box = make_box();
   box.triangles.push_back(box.triangles[4]);
   EXPECT_EQ(str(mesh_topology(box)), str(MeshTopology{0, 0, 0, 1, 0}));
+  EXPECT_EQ(mesh_topology(box).first_duplicate, box.triangles.size() - 1);
+  EXPECT_NE(
+      mesh_topology(box).describe(glm::dvec3(0.0)).find("1 triangles listed twice (first: triangle 12)"),
+      std::string::npos);
   expect_as_defined(box, "box with a duplicate");
   // The same copy with rotated corners and its own vertices is the same triangle.
   TriangleSoup rotated = unshared(make_box());

@@ -211,10 +211,11 @@ int run_voxelize(const VoxelizeArgs& args) {
     MeshTopology topology = mesh_topology(soup);
     if (topology.duplicates > 0) {
       drop_duplicate_triangles(soup);
-      fmt::print(stderr,
-                 "{}voxr: warning: {}: {} triangles repeat an earlier triangle exactly; the copies were "
-                 "dropped\n",
-                 cr, scene.source, topology.duplicates);
+      fmt::print(
+          stderr,
+          "{}voxr: warning: {}: {} triangles repeat an earlier triangle exactly (first: triangle {}); the "
+          "copies were dropped\n",
+          cr, scene.source, topology.duplicates, topology.first_duplicate);
     }
     if (!topology.closed() && (options.solid == SolidMode::kParity || options.solid == SolidMode::kXor)) {
       // Column parity needs a closed surface. Late filling repairs the columns that cross a hole from their

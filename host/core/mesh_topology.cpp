@@ -173,7 +173,8 @@ std::string MeshTopology::describe(const glm::dvec3& anchor) const {
   };
   if (boundary) add(fmt::format("{} boundary edges {}", boundary, at(boundary_at)));
   if (nonmanifold) add(fmt::format("{} non-manifold edges {}", nonmanifold, at(nonmanifold_at)));
-  if (duplicates) add(fmt::format("{} triangles listed twice", duplicates));
+  if (duplicates)
+    add(fmt::format("{} triangles listed twice (first: triangle {})", duplicates, first_duplicate));
   if (opposite_pairs) add(fmt::format("{} pairs of opposite triangles on the same corners", opposite_pairs));
   return s.empty() ? "closed" : s;
 }
@@ -194,13 +195,14 @@ MeshTopology mesh_topology(const TriangleSoup& soup, uint32_t material) {
   seen.reserve(soup.triangles.size());
   std::vector<bool> removed;
   MeshTopology result;
-  for (const glm::uvec4& t : soup.triangles) {
+  for (size_t i = 0; i < soup.triangles.size(); ++i) {
+    const glm::uvec4& t = soup.triangles[i];
     if (material != TriangleSoup::kKeepMaterial && t.w != material) continue;
     auto welded_id = [&](uint32_t v) { return v < id.size() ? id[v] : v; };  // unvalidated soups too
     const uint32_t x = welded_id(t.x), y = welded_id(t.y), z = welded_id(t.z);
     const TriangleKey key = key_of(x, y, z);
     if (seen.count(key)) {
-      ++result.duplicates;
+      if (result.duplicates++ == 0) result.first_duplicate = i;
       continue;
     }
     const auto reverse = seen.find(key_of(x, z, y));

@@ -18,6 +18,7 @@ struct MeshTopology {
   size_t opposite_pairs = 0;  // pairs of triangles on the same corners in opposite orientations
   // Midpoints of the first boundary and non-manifold edge found (soup frame), for messages.
   glm::vec3 boundary_at{0.0f}, nonmanifold_at{0.0f};
+  size_t first_duplicate = 0;  // soup index of the first copy (when duplicates > 0)
   bool closed() const { return boundary == 0 && nonmanifold == 0; }
   bool closed_and_oriented() const { return closed() && misoriented == 0; }
   // "3 boundary edges (first at (x, y, z)), 1 triangle listed twice, ...": what was found, for warnings.
