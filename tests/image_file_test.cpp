@@ -1,0 +1,102 @@
+// PNG and EXR files through OpenImageIO (io/image_file.h): EXR keeps linear floats exactly, PNG stores
+// sRGB-encoded 8-bit colour and decodes back within a quantization step, errors name the file, and a
+// failed write leaves nothing behind.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include "core/error.h"
+#include "io/image_file.h"
+#include "test_support.h"
+
+namespace voxr {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A 7 x 5 gradient with distinct values per channel and a varying alpha.
+ImageRgba gradient() {
+  ImageRgba image(7, 5);
+  for (uint32_t y = 0; y < image.height; ++y)
+    for (uint32_t x = 0; x < image.width; ++x)
+      image.at(x, y) = glm::vec4(x / 6.0f, y / 4.0f, (x + y) / 10.0f, 1.0f - x / 12.0f);
+  return image;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(ImageFile, SrgbTransferMatchesTheStandard) {
+  EXPECT_FLOAT_EQ(linear_to_srgb(0.0f), 0.0f);
+  EXPECT_FLOAT_EQ(linear_to_srgb(1.0f), 1.0f);
+  EXPECT_NEAR(linear_to_srgb(0.5f), 0.735357f, 1e-5f);   // the familiar 188/255
+  EXPECT_NEAR(linear_to_srgb(0.002f), 0.02584f, 1e-5f);  // linear segment
+  EXPECT_NEAR(linear_to_srgb(2.0f), 1.0f, 1e-6f);        // clamped
+  for (float v = 0.0f; v <= 1.0f; v += 0.01f) EXPECT_NEAR(srgb_to_linear(linear_to_srgb(v)), v, 1e-5f);
+}
+
+TEST(ImageFile, ExrKeepsLinearFloatsExactly) {
+  test::TempDir dir;
+  ImageRgba image = gradient();
+  image.at(3, 2) = glm::vec4(12.5f, 1e-6f, 0.0f, 1.0f);  // HDR and tiny values survive
+  const fs::path path = dir.path() / "g.exr";
+  write_image(image, path);
+  const ImageRgba back = read_image(path);
+  ASSERT_EQ(back.width, image.width);
+  ASSERT_EQ(back.height, image.height);
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    EXPECT_EQ(back.pixels[i], image.pixels[i]) << "pixel " << i;
+}
+
+TEST(ImageFile, PngStoresSrgbAndDecodesWithinAStep) {
+  test::TempDir dir;
+  const ImageRgba image = gradient();
+  const fs::path path = dir.path() / "g.PNG";  // extensions in any case
+  write_image(image, path);
+  const ImageRgba back = read_image(path);
+  ASSERT_EQ(back.width, image.width);
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    for (int c = 0; c < 4; ++c) {
+      // Half an 8-bit step in the encoding, mapped back through the transfer function's slope.
+      const float v = image.pixels[i][c];
+      const float step = c == 3 ? 0.5f / 255.0f + 1e-6f
+                                : std::abs(srgb_to_linear(linear_to_srgb(v) + 0.5f / 255.0f) - v) + 1e-6f;
+      EXPECT_NEAR(back.pixels[i][c], v, step) << "pixel " << i << " channel " << c;
+    }
+  // Linear 0.5 is stored as 188, not 128: the file is sRGB-encoded.
+  ImageRgba grey(1, 1, glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
+  write_image(grey, dir.path() / "grey.png");
+  EXPECT_NEAR(linear_to_srgb(read_image(dir.path() / "grey.png").at(0, 0).x) * 255.0f, 188.0f, 0.5f);
+}
+
+TEST(ImageFile, ErrorsNameTheFileAndLeaveNothing) {
+  test::TempDir dir;
+  const ImageRgba image = gradient();
+  EXPECT_NE(
+      error_of([&] { write_image(image, dir.path() / "a.jpg"); }).find("a.jpg: unsupported image format"),
+      std::string::npos);
+  EXPECT_NE(
+      error_of([&] { write_image(ImageRgba(), dir.path() / "b.png"); }).find("b.png: the image is empty"),
+      std::string::npos);
+  EXPECT_NE(error_of([&] { write_image(image, dir.path() / "missing" / "c.png"); }).find("c.png"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { read_image(dir.path() / "none.png"); }).find("none.png: no such file"),
+            std::string::npos);
+  const fs::path garbage = dir.write("garbage.png", "not a png at all");
+  EXPECT_NE(error_of([&] { read_image(garbage); }).find("garbage.png: cannot read the image"),
+            std::string::npos);
+  size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir.path())) files += e.path().filename() != "garbage.png";
+  EXPECT_EQ(files, 0u) << "a failed write left a file behind";
+}
+
+}  // namespace
+}  // namespace voxr
