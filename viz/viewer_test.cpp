@@ -218,6 +218,17 @@ Picture screenshot(const fs::path& dir, const std::string& name, const std::stri
 
 // ---- Screenshots -----------------------------------------------------------------------------------------
 
+// Pixel values that differ between two pictures of one size (-1 when the sizes differ).
+vtkIdType differing_values(const Picture& first, const Picture& second) {
+  vtkDataArray* a = first.image->GetPointData()->GetScalars();
+  vtkDataArray* b = second.image->GetPointData()->GetScalars();
+  if (a->GetNumberOfValues() != b->GetNumberOfValues()) return -1;
+  vtkIdType differ = 0;
+  for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+    differ += a->GetVariantValue(i) != b->GetVariantValue(i);
+  return differ;
+}
+
 TEST_F(ViewerTest, IsoFrontViewShowsTheBoxesWhereTheyAre) {
   const Picture p =
       screenshot(dir_, "iso", "--view iso --size 320,240 --azimuth 0 --elevation 0 --no-overlay");
@@ -308,13 +319,8 @@ TEST_F(ViewerTest, NrrdSetLooksLikeTheVti) {
     ASSERT_EQ(pictures.back().width, 240);
     EXPECT_FALSE(pictures.back().single_color());
   }
-  vtkDataArray* a = pictures[0].image->GetPointData()->GetScalars();
-  vtkDataArray* b = pictures[1].image->GetPointData()->GetScalars();
-  ASSERT_EQ(a->GetNumberOfValues(), b->GetNumberOfValues());
-  vtkIdType differ = 0;
-  for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
-    differ += a->GetVariantValue(i) != b->GetVariantValue(i);
-  EXPECT_EQ(differ, 0) << "pixel values differ between the .vti and the .nrrd picture";
+  EXPECT_EQ(differing_values(pictures[0], pictures[1]), 0)
+      << "pixel values differ between the .vti and the .nrrd picture";
 }
 
 TEST_F(ViewerTest, TurnedGridIsPlacedByItsAxes) {
@@ -446,13 +452,8 @@ TEST_P(SmallGridTest, LoadsAsWrittenFromNrrdAndVtiAndRenders) {
         EXPECT_FALSE(pictures.back().single_color());
       }
     }
-    vtkDataArray* a = pictures[0].image->GetPointData()->GetScalars();
-    vtkDataArray* b = pictures[1].image->GetPointData()->GetScalars();
-    ASSERT_EQ(a->GetNumberOfValues(), b->GetNumberOfValues());
-    vtkIdType differ = 0;
-    for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
-      differ += a->GetVariantValue(i) != b->GetVariantValue(i);
-    EXPECT_EQ(differ, 0) << view << ": the .nrrd and .vti pictures differ";
+    EXPECT_EQ(differing_values(pictures[0], pictures[1]), 0)
+        << view << ": the .nrrd and .vti pictures differ";
   }
 }
 

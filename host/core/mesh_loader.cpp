@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "core/error.h"
+#include "core/file_extension.h"
 #include "mesh/assimp_reader.h"
 #include "mesh/file_bytes.h"
 #include "mesh/mesh_readers.h"
@@ -31,12 +32,6 @@ const Format kFormats[] = {
      [](const std::string& n, std::string_view b, std::vector<std::string>&) { return read_ply(n, b); }},
     {".stl", read_stl},
 };
-
-std::string lower_extension(const std::filesystem::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
 
 const Format* find_format(const std::filesystem::path& file) {
   const std::string ext = lower_extension(file);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/file_extension.h"
 #include "io/atomic_file.h"
 
 namespace voxr {
@@ -17,12 +18,6 @@ namespace voxr {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string lower_extension(const fs::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
 
 // OpenImageIO's message without line breaks (an error here is one line).
 std::string one_line(std::string text) {

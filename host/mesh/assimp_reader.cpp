@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/file_extension.h"
 #include "mesh/corner_welder.h"
 #include "mesh/file_bytes.h"
 #include "mesh/text_scan.h"
@@ -25,12 +26,6 @@ namespace voxr {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lower_extension(const fs::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
 
 // Assimp's messages may span lines (validation lists every problem); a voxr error is one line.
 std::string one_line(std::string text) {
