@@ -107,6 +107,52 @@ typedef struct VoxGridView {
   uint pad;
 } VoxGridView;
 
+/* ---- Rendering (host/render, kernels/raster_*.cl, kernels/shadow_*.cl) ---- */
+
+/* Material kinds as the kernels read them (core/material.h MaterialKind, same order). */
+#define VOXR_MATERIAL_OPAQUE 0
+#define VOXR_MATERIAL_DIELECTRIC 1
+#define VOXR_MATERIAL_SHEET 2
+
+/* A material on the device (host/render/render_scene.h fills it from core/material.h). */
+typedef struct RenderMaterial {
+  float color[3]; /* diffuse reflectance (opaque, sheet) */
+  uint kind;      /* VOXR_MATERIAL_* */
+  float transmittance[3]; /* per crossing (sheet) */
+  float ior;              /* dielectric */
+  float absorption[3];    /* sigma_a per world unit (dielectric) */
+  float pad;
+} RenderMaterial;
+
+/* The light and the environment, positions relative to the scene's anchor. */
+typedef struct RenderLight {
+  float position[3];  /* point light */
+  uint directional;   /* 1: directional, 0: point */
+  float direction[3]; /* directional: unit vector, the way light travels */
+  float pad0;
+  float intensity[3]; /* point: irradiance intensity / d^2 at distance d; directional: irradiance */
+  float pad1;
+  float ambient[3]; /* environment colour: the constant ambient term and what rays that miss see */
+  float pad2;
+} RenderLight;
+
+/* A pixel that sees no triangle. */
+#define VOXR_NO_TRIANGLE 0xffffffffu
+
+/* What the camera sees at one pixel, resolved from the visibility buffer (raster_resolve.cl) or found by the
+ * reference's primary ray. Positions relative to the anchor, normals unit length and turned towards the
+ * viewer; `triangle` is VOXR_NO_TRIANGLE where the pixel sees nothing (the other fields are then 0). */
+typedef struct SurfaceSample {
+  float position[3];
+  uint triangle;
+  float normal[3]; /* shading normal: interpolated vertex normal */
+  uint material;
+  float geometric_normal[3];
+  float distance; /* from the eye along the pixel's ray */
+  float barycentric[2]; /* of vertices 1 and 2 */
+  float pad[2];
+} SurfaceSample;
+
 /* Every size and offset the host and the device must agree on, in one list that both expand: SIZE(T) for a
  * struct, OFFSET(T, field) for a member. */
 #define VOXR_LAYOUT_ENTRIES(SIZE, OFFSET)                                                              \
@@ -122,6 +168,13 @@ typedef struct VoxGridView {
   SIZE(VoxSolidLayout) OFFSET(VoxSolidLayout, dims) OFFSET(VoxSolidLayout, words_x)                     \
   OFFSET(VoxSolidLayout, slice_words)                                                                   \
   SIZE(VoxGridView) OFFSET(VoxGridView, world_to_grid) OFFSET(VoxGridView, dims)                        \
-  OFFSET(VoxGridView, channels) OFFSET(VoxGridView, voxels_set) OFFSET(VoxGridView, has_rank_index)
+  OFFSET(VoxGridView, channels) OFFSET(VoxGridView, voxels_set) OFFSET(VoxGridView, has_rank_index)   \
+  SIZE(RenderMaterial) OFFSET(RenderMaterial, color) OFFSET(RenderMaterial, kind)                       \
+  OFFSET(RenderMaterial, transmittance) OFFSET(RenderMaterial, ior) OFFSET(RenderMaterial, absorption)  \
+  SIZE(RenderLight) OFFSET(RenderLight, position) OFFSET(RenderLight, directional)                      \
+  OFFSET(RenderLight, direction) OFFSET(RenderLight, intensity) OFFSET(RenderLight, ambient)            \
+  SIZE(SurfaceSample) OFFSET(SurfaceSample, position) OFFSET(SurfaceSample, triangle)                   \
+  OFFSET(SurfaceSample, normal) OFFSET(SurfaceSample, material) OFFSET(SurfaceSample, geometric_normal) \
+  OFFSET(SurfaceSample, distance) OFFSET(SurfaceSample, barycentric)
 
 #endif

@@ -1,0 +1,30 @@
+// The scene's materials and light in the form the render kernels and the reference read (voxr_layout.h
+// RenderMaterial, RenderLight): one conversion, used by every renderer.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+#include "core/scene.h"
+#include "voxr_layout.h"
+
+namespace voxr {
+
+// One RenderMaterial per scene material, same order (material ids index both).
+std::vector<RenderMaterial> render_materials(const std::vector<Material>& materials);
+
+// The light with its position relative to `anchor` and the environment colour as the ambient term.
+// A directional light's direction is normalized. Throws voxr::Error for a zero direction.
+RenderLight render_light(const Light& light, const Environment& environment, const glm::dvec3& anchor);
+
+// Unit vector from `point` (anchor-relative) towards the light, and the irradiance the light gives there
+// before shadowing (point: intensity / d^2, directional: intensity).
+struct LightAtPoint {
+  glm::vec3 to_light{0.0f};
+  glm::vec3 irradiance{0.0f};
+  float distance = 0.0f;  // to a point light; +inf for a directional one
+};
+LightAtPoint light_at(const RenderLight& light, const glm::vec3& point);
+
+}  // namespace voxr
