@@ -153,6 +153,20 @@ typedef struct SurfaceSample {
   float pad[2];
 } SurfaceSample;
 
+/* Where a receiver finds its column and slab in a light's grid (host/render/light_frame.h). Orthographic
+ * (directional light): grid = to_light * p. Frustum (point light): q = to_light * p is the point in the
+ * light's view (z along the view, world units) and grid = ((q.x / q.z - u0) * inv_du,
+ * (q.y / q.z - v0) * inv_dv, (inv_near - 1 / q.z) * depth_scale): a projective map, so triangles stay
+ * triangles and slabs are depth slices (uniform in 1/z). */
+typedef struct ShadowFrame {
+  float to_light[12]; /* rows of a 3x4 affine from anchor-relative world coordinates */
+  uint dims[4];
+  uint projective;
+  float u0, v0, inv_du, inv_dv;
+  float inv_near, depth_scale;
+  float voxel_size; /* orthographic: the voxel edge in world units */
+} ShadowFrame;
+
 /* Every size and offset the host and the device must agree on, in one list that both expand: SIZE(T) for a
  * struct, OFFSET(T, field) for a member. */
 #define VOXR_LAYOUT_ENTRIES(SIZE, OFFSET)                                                              \
@@ -175,6 +189,9 @@ typedef struct SurfaceSample {
   OFFSET(RenderLight, direction) OFFSET(RenderLight, intensity) OFFSET(RenderLight, ambient)            \
   SIZE(SurfaceSample) OFFSET(SurfaceSample, position) OFFSET(SurfaceSample, triangle)                   \
   OFFSET(SurfaceSample, normal) OFFSET(SurfaceSample, material) OFFSET(SurfaceSample, geometric_normal) \
-  OFFSET(SurfaceSample, distance) OFFSET(SurfaceSample, barycentric)
+  OFFSET(SurfaceSample, distance) OFFSET(SurfaceSample, barycentric)                                    \
+  SIZE(ShadowFrame) OFFSET(ShadowFrame, to_light) OFFSET(ShadowFrame, dims) OFFSET(ShadowFrame, projective) \
+  OFFSET(ShadowFrame, u0) OFFSET(ShadowFrame, inv_dv) OFFSET(ShadowFrame, depth_scale)                  \
+  OFFSET(ShadowFrame, voxel_size)
 
 #endif

@@ -1,0 +1,271 @@
+#include "render/light_frame.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/error.h"
+
+namespace voxr {
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+std::array<glm::vec3, 8> corners(const Bounds& b) {
+  std::array<glm::vec3, 8> c;
+  for (int i = 0; i < 8; ++i)
+    c[i] = glm::vec3((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z);
+  return c;
+}
+
+// Rows x, y, z of a right-handed orthonormal frame whose z is `forward` (unit).
+glm::mat3 frame_rows(const glm::vec3& forward) {
+  const glm::vec3 helper = std::abs(forward.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  const glm::vec3 x = glm::normalize(glm::cross(helper, forward));
+  const glm::vec3 y = glm::cross(forward, x);
+  return glm::transpose(glm::mat3(x, y, forward));  // rows
+}
+
+void check_resolution(uint32_t resolution) {
+  if (resolution < 2 || resolution > 4096) fail("--shadow-res {} is out of range (2..4096)", resolution);
+}
+
+}  // namespace
+
+glm::vec3 LightFrame::to_grid(const glm::vec3& p) const {
+  const float* m = params.to_light;
+  const glm::vec3 q(m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3], m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
+                    m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]);
+  if (!projective()) return q;
+  return glm::vec3((q.x / q.z - params.u0) * params.inv_du, (q.y / q.z - params.v0) * params.inv_dv,
+                   (params.inv_near - 1.0f / q.z) * params.depth_scale);
+}
+
+float LightFrame::slab_length(uint32_t i, uint32_t j, uint32_t k) const {
+  if (!projective()) return params.voxel_size;
+  const float u = params.u0 + (float(i) + 0.5f) / params.inv_du;
+  const float v = params.v0 + (float(j) + 0.5f) / params.inv_dv;
+  const float z0 = 1.0f / (params.inv_near - float(k) / params.depth_scale);
+  const float z1 = 1.0f / (params.inv_near - float(k + 1) / params.depth_scale);
+  return (z1 - z0) * std::sqrt(1.0f + u * u + v * v);
+}
+
+std::string LightFrame::describe() const {
+  const glm::uvec3 d(params.dims[0], params.dims[1], params.dims[2]);
+  if (!projective())
+    return fmt::format("orthographic {} x {} x {}, voxel {:.4g}", d.x, d.y, d.z, params.voxel_size);
+  const float u1 = params.u0 + float(d.x) / params.inv_du, v1 = params.v0 + float(d.y) / params.inv_dv;
+  const float ax = glm::degrees(std::atan(u1) - std::atan(params.u0));
+  const float ay = glm::degrees(std::atan(v1) - std::atan(params.v0));
+  return fmt::format("frustum {} x {} x {}, depth {:.4g}..{:.4g}, {:.3g} x {:.3g} degrees", d.x, d.y, d.z,
+                     near_depth, far_depth, ax, ay);
+}
+
+Bounds visible_bounds(const Bounds& scene, const CameraFrame& camera) {
+  // The view frustum's corners at the near and far planes.
+  Bounds view;
+  const float tx = camera.tan_half_fov_y * camera.aspect(), ty = camera.tan_half_fov_y;
+  for (float depth : {camera.near_plane, camera.far_plane})
+    for (int sx = -1; sx <= 1; sx += 2)
+      for (int sy = -1; sy <= 1; sy += 2)
+        view.extend(camera.eye +
+                    depth * (camera.forward + float(sx) * tx * camera.right + float(sy) * ty * camera.up));
+  Bounds out;
+  out.lo = glm::max(scene.lo, view.lo);
+  out.hi = glm::min(scene.hi, view.hi);
+  return out.empty() ? scene : out;
+}
+
+LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, const TriangleSoup& casters,
+                           uint32_t resolution) {
+  check_resolution(resolution);
+  if (receivers.empty()) fail("nothing to shadow: the scene's visible bounds are empty");
+  LightFrame f;
+  const auto rc = corners(receivers);
+  const uint32_t n = resolution;
+
+  if (light.directional) {
+    const glm::vec3 dir =
+        glm::normalize(glm::vec3(light.direction[0], light.direction[1], light.direction[2]));
+    const glm::mat3 rows = frame_rows(dir);
+    // Light-space box of the receivers.
+    glm::vec3 lo(kInf), hi(-kInf);
+    for (const glm::vec3& c : rc) {
+      const glm::vec3 q = rows * c;
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+    // Nearest caster vertex inside the receivers' columns, in front of their far end.
+    float z_near = lo.z;
+    for (size_t v = 0; v < casters.positions.size(); ++v) {
+      const glm::vec3 q = rows * glm::vec3(casters.positions[v]);
+      if (q.x >= lo.x && q.x <= hi.x && q.y >= lo.y && q.y <= hi.y && q.z < z_near) z_near = q.z;
+    }
+    const float extent = std::max({hi.x - lo.x, hi.y - lo.y, 1e-6f});
+    // One voxel of margin on every side of the columns (bilinear lookups at the edge), half a voxel in depth.
+    const float h = extent / float(n - 2);
+    const glm::uvec3 dims(std::max(1u, uint32_t(std::ceil((hi.x - lo.x) / h)) + 2),
+                          std::max(1u, uint32_t(std::ceil((hi.y - lo.y) / h)) + 2),
+                          std::min(4 * n, std::max(1u, uint32_t(std::ceil((hi.z - z_near) / h + 1.0f)))));
+    const glm::vec3 lo_light(lo.x - h, lo.y - h, z_near - 0.5f * h);
+    f.grid.axes = glm::transpose(rows);  // columns: x, y, z axes in world space
+    f.grid.origin = f.grid.axes * lo_light;
+    f.grid.anchor = casters.anchor;
+    f.grid.voxel_size = h;
+    f.grid.dims = dims;
+    const auto m = f.grid.world_to_grid();
+    std::copy(m.begin(), m.end(), f.params.to_light);
+    f.params.projective = 0;
+    f.params.voxel_size = h;
+  } else {
+    const glm::vec3 L(light.position[0], light.position[1], light.position[2]);
+    if (glm::all(glm::greaterThan(L, receivers.lo)) && glm::all(glm::lessThan(L, receivers.hi)))
+      fail(
+          "the point light at ({:.4g}, {:.4g}, {:.4g}) (anchor-relative) lies among the receivers: a "
+          "transparent shadow map's frustum cannot see all around it; move it or use a directional light",
+          L.x, L.y, L.z);
+    const glm::vec3 centre = 0.5f * (receivers.lo + receivers.hi);
+    const glm::mat3 rows = frame_rows(glm::normalize(centre - L));
+    float u0 = kInf, u1 = -kInf, v0 = kInf, v1 = -kInf, z_far = 0.0f, z_min_receiver = kInf;
+    for (const glm::vec3& c : rc) {
+      const glm::vec3 q = rows * (c - L);
+      if (!(q.z > 0.0f))
+        fail(
+            "the point light at ({:.4g}, {:.4g}, {:.4g}) (anchor-relative) is beside or among the receivers: "
+            "a frustum grid cannot hold them; move the light or use a directional light",
+            L.x, L.y, L.z);
+      u0 = std::min(u0, q.x / q.z);
+      u1 = std::max(u1, q.x / q.z);
+      v0 = std::min(v0, q.y / q.z);
+      v1 = std::max(v1, q.y / q.z);
+      z_far = std::max(z_far, q.z);
+      z_min_receiver = std::min(z_min_receiver, q.z);
+    }
+    // Nearest caster vertex inside the frustum (a caster nearer the light than the receivers' box).
+    float z_near = z_min_receiver;
+    const float z_floor = 1e-3f * z_far;
+    for (size_t v = 0; v < casters.positions.size(); ++v) {
+      const glm::vec3 q = rows * (glm::vec3(casters.positions[v]) - L);
+      if (q.z > z_floor && q.z < z_near && q.x >= u0 * q.z && q.x <= u1 * q.z && q.y >= v0 * q.z &&
+          q.y <= v1 * q.z)
+        z_near = q.z;
+    }
+    z_near = std::max(z_floor, z_near * 0.999f);
+    z_far *= 1.001f;
+    const float su = u1 - u0, sv = v1 - v0, s = std::max({su, sv, 1e-6f});
+    const float du = s / float(n - 2);  // one column of margin each side
+    u0 -= du;
+    v0 -= du;
+    const glm::uvec3 dims(uint32_t(std::ceil(su / du)) + 2, uint32_t(std::ceil(sv / du)) + 2, n);
+    f.grid = GridSpec{};
+    f.grid.dims = dims;
+    f.grid.anchor = glm::dvec3(0.0);
+    f.light_position = L;
+    f.view = rows;
+    f.near_depth = z_near;
+    f.far_depth = z_far;
+    const glm::mat3 axes = glm::transpose(rows);  // columns: the view's x, y, z axes
+    for (int r = 0; r < 3; ++r) {
+      f.params.to_light[4 * r + 0] = axes[r].x;
+      f.params.to_light[4 * r + 1] = axes[r].y;
+      f.params.to_light[4 * r + 2] = axes[r].z;
+      f.params.to_light[4 * r + 3] = -glm::dot(axes[r], L);
+    }
+    f.params.projective = 1;
+    f.params.u0 = u0;
+    f.params.v0 = v0;
+    f.params.inv_du = 1.0f / du;
+    f.params.inv_dv = 1.0f / du;
+    f.params.inv_near = 1.0f / z_near;
+    f.params.depth_scale = float(n) / (1.0f / z_near - 1.0f / z_far);
+  }
+  f.params.dims[0] = f.grid.dims.x;
+  f.params.dims[1] = f.grid.dims.y;
+  f.params.dims[2] = f.grid.dims.z;
+  return f;
+}
+
+namespace {
+
+// Clips polygon `poly` (view-space points) to z >= z_min; Sutherland-Hodgman against one plane.
+std::vector<glm::vec3> clip_near(const std::array<glm::vec3, 3>& tri, float z_min) {
+  std::vector<glm::vec3> out;
+  for (int e = 0; e < 3; ++e) {
+    const glm::vec3 a = tri[e], b = tri[(e + 1) % 3];
+    const bool ina = a.z >= z_min, inb = b.z >= z_min;
+    if (ina) out.push_back(a);
+    if (ina != inb) out.push_back(a + (b - a) * ((z_min - a.z) / (b.z - a.z)));
+  }
+  return out;
+}
+
+}  // namespace
+
+TriangleSoup project_to_light_grid(const TriangleSoup& soup, const LightFrame& frame) {
+  VOXR_CHECK(frame.projective());
+  TriangleSoup out;
+  out.anchor = glm::dvec3(0.0);
+  const glm::vec3 dims(frame.grid.dims);
+  const float z_min = 0.5f * frame.near_depth;
+  std::vector<glm::vec4> positions;
+  std::vector<glm::uvec4> triangles;
+  positions.reserve(soup.positions.size());
+  triangles.reserve(soup.triangles.size());
+  // View-space positions of every vertex, once.
+  std::vector<glm::vec3> view(soup.positions.size());
+  for (size_t v = 0; v < view.size(); ++v)
+    view[v] = frame.view * (glm::vec3(soup.positions[v]) - frame.light_position);
+  auto project = [&](const glm::vec3& q) {
+    return glm::vec3((q.x / q.z - frame.params.u0) * frame.params.inv_du,
+                     (q.y / q.z - frame.params.v0) * frame.params.inv_dv,
+                     (frame.params.inv_near - 1.0f / q.z) * frame.params.depth_scale);
+  };
+  std::vector<int64_t> mapped(view.size(), -1);  // projected vertex index of an unclipped vertex
+  for (size_t t = 0; t < soup.triangles.size(); ++t) {
+    const glm::uvec4 tri = soup.triangles[t];
+    const std::array<glm::vec3, 3> q{view[tri.x], view[tri.y], view[tri.z]};
+    if (q[0].z < z_min && q[1].z < z_min && q[2].z < z_min) continue;
+    const bool whole = q[0].z >= z_min && q[1].z >= z_min && q[2].z >= z_min;
+    std::vector<glm::vec3> poly = whole ? std::vector<glm::vec3>(q.begin(), q.end()) : clip_near(q, z_min);
+    std::vector<glm::vec3> g(poly.size());
+    for (size_t c = 0; c < poly.size(); ++c) g[c] = project(poly[c]);
+    // Cull when every corner is beyond the same side of the grid.
+    bool outside = false;
+    for (int a = 0; a < 3 && !outside; ++a) {
+      bool below = true, above = true;
+      for (const glm::vec3& p : g) {
+        below = below && p[a] < 0.0f;
+        above = above && p[a] > dims[a];
+      }
+      outside = below || above;
+    }
+    if (outside) continue;
+    if (whole) {
+      glm::uvec4 out_tri(0, 0, 0, tri.w);
+      for (int c = 0; c < 3; ++c) {
+        const uint32_t src = tri[c];
+        if (mapped[src] < 0) {
+          mapped[src] = int64_t(positions.size());
+          positions.emplace_back(g[c], 1.0f);
+        }
+        out_tri[c] = uint32_t(mapped[src]);
+      }
+      triangles.push_back(out_tri);
+    } else {
+      const uint32_t base = uint32_t(positions.size());
+      for (const glm::vec3& p : g) positions.emplace_back(p, 1.0f);
+      for (size_t c = 1; c + 1 < g.size(); ++c)
+        triangles.emplace_back(base, base + uint32_t(c), base + uint32_t(c + 1), tri.w);
+    }
+  }
+  out.positions.assign(positions.begin(), positions.end());
+  out.triangles.assign(triangles.begin(), triangles.end());
+  return out;
+}
+
+}  // namespace voxr

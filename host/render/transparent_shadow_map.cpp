@@ -1,0 +1,86 @@
+#include "render/transparent_shadow_map.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "grid/channel_table.h"
+
+namespace voxr {
+
+namespace {
+
+constexpr size_t kGroup = 64;
+constexpr uint32_t kShadowVoxel = 0, kShadowUniform = 1;  // shadow_transmittance.cl SHADOW_*
+
+VoxelizeOptions voxelize_options(const ShadowMapOptions& options) {
+  VoxelizeOptions v;
+  if (options.method == ShadowMethod::kUniform) {
+    v.method = VoxelizeMethod::kSlicemap;
+  } else {
+    VOXR_CHECK(options.method == ShadowMethod::kVoxel);
+    v.method = VoxelizeMethod::kHybrid;
+    v.mode = options.mode;
+    v.channels = ChannelSet::parse("occ,count,material");
+  }
+  return v;
+}
+
+}  // namespace
+
+TransparentShadowMap::TransparentShadowMap(ClRuntime& cl) : cl_(cl), voxelizer_(cl) {}
+
+std::vector<ProgramSpec> TransparentShadowMap::programs(const ShadowMapOptions&) const {
+  const Defines defines = channel_defines();
+  return {{"shadow_transmittance.cl", defines}, {"shadow_lookup.cl", {}}};
+}
+
+void TransparentShadowMap::build(const DeviceMesh& light_mesh, const LightFrame& frame,
+                                 const cl::Buffer& materials, uint32_t material_count,
+                                 const glm::vec3& uniform_tau, const ShadowMapOptions& options,
+                                 VoxelizeStats* stats) {
+  VOXR_CHECK(material_count > 0);
+  frame_ = frame;
+  const VoxelizeOptions vopt = voxelize_options(options);
+  voxelizer_.prepare(vopt);
+  voxelizer_.run(light_mesh, frame.grid, vopt, grid_, stats);
+  if (!grid_.has_rank_index && options.method == ShadowMethod::kVoxel) build_rank_index(cl_, grid_);
+  const uint64_t columns = uint64_t(frame.grid.dims.x) * frame.grid.dims.y;
+  cl::Buffer& volume = volume_.ensure(cl_, columns * frame.grid.dims.z * 4, "transmittance volume");
+  cl::Kernel kernel = cl_.kernel("shadow_transmittance.cl", "shadow_transmittance", channel_defines());
+  const uint32_t method = options.method == ShadowMethod::kUniform ? kShadowUniform : kShadowVoxel;
+  cl_.launch("shadow_transmittance", kernel, columns, kGroup, grid_.view_args(cl_), frame.params, materials,
+             cl_uint(material_count), cl_uint(method), uniform_tau.x, uniform_tau.y, uniform_tau.z, volume);
+}
+
+void TransparentShadowMap::lookup(const cl::Buffer& samples, uint32_t count, const cl::Buffer& materials,
+                                  uint32_t material_count, const RenderLight& light,
+                                  const ShadowMapOptions& options, cl::Buffer& transmittance) {
+  cl::Kernel kernel = cl_.kernel("shadow_lookup.cl", "shadow_lookup");
+  cl_.launch("shadow_lookup", kernel, count, kGroup, samples, cl_uint(count), materials,
+             cl_uint(material_count), light, frame_.params, volume_.buffer, options.bias,
+             options.normal_offset, transmittance);
+}
+
+uint64_t TransparentShadowMap::device_bytes() const {
+  return grid_.device_bytes() + volume_.bytes;
+}
+
+glm::vec3 uniform_optical_depth(const TriangleSoup& soup, const std::vector<Material>& materials,
+                                float voxel_length) {
+  glm::dvec3 sum(0.0);
+  uint64_t n = 0;
+  for (const glm::uvec4& t : soup.triangles) {
+    if (t.w >= materials.size()) continue;
+    const Material& m = materials[t.w];
+    if (m.kind == MaterialKind::kSheet) {
+      sum += -glm::log(glm::max(glm::dvec3(m.transmittance), glm::dvec3(1e-30)));
+      ++n;
+    } else if (m.kind == MaterialKind::kDielectric) {
+      sum += glm::dvec3(m.absorption) * double(voxel_length);
+      ++n;
+    }
+  }
+  return n == 0 ? glm::vec3(0.0f) : glm::vec3(sum / double(n));
+}
+
+}  // namespace voxr

@@ -1,0 +1,51 @@
+/* shadow_lookup.cl — each receiver's transmittance from a light-grid transmittance volume
+ * (shadow_transmittance.cl): the receiver, pushed off its surface by `normal_offset` columns along the normal
+ * turned to the light and moved `bias` slabs towards the light (against self-shadow acne), is interpolated
+ * bilinearly between the four nearest columns and linearly within its slab. */
+#include "shadow_frame.h"
+
+#ifndef SHADOW_GROUP
+#define SHADOW_GROUP 64
+#endif
+
+/* Transmittance of column `c` at depth z (grid units). */
+inline float3 column_at(__global const uint* volume, ulong c, uint dz, float z) {
+  if (z <= 0.0f) return (float3)(1.0f);
+  const float kf = floor(z);
+  if (kf >= (float)dz) return sf_unpack(volume[c * dz + dz - 1]);
+  const uint k = (uint)kf;
+  const float3 before = k > 0 ? sf_unpack(volume[c * dz + k - 1]) : (float3)(1.0f);
+  return mix(before, sf_unpack(volume[c * dz + k]), z - kf);
+}
+
+__kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_lookup(
+    __global const SurfaceSample* samples, uint count, __global const RenderMaterial* materials,
+    uint material_count, RenderLight light, ShadowFrame frame, __global const uint* volume, float bias,
+    float normal_offset, __global float4* transmittance) {
+  const uint id = get_global_id(0);
+  if (id >= count) return;
+  const SurfaceSample s = samples[id];
+  float3 t = (float3)(1.0f);
+  if (s.triangle != VOXR_NO_TRIANGLE &&
+      materials[min(s.material, material_count - 1u)].kind != VOXR_MATERIAL_DIELECTRIC) {
+    float3 p = vload3(0, s.position);
+    float3 n = vload3(0, s.geometric_normal);
+    const float3 to_light =
+        light.directional ? -vload3(0, light.direction) : normalize(vload3(0, light.position) - p);
+    if (dot(n, to_light) < 0.0f) n = -n;
+    p += n * (normal_offset * sf_column_width(&frame, p));
+    const float3 gp = sf_to_grid(&frame, p);
+    const uint dx = frame.dims[0], dy = frame.dims[1], dz = frame.dims[2];
+    const float x = gp.x - 0.5f, y = gp.y - 0.5f, z = gp.z - bias;
+    const float fx = floor(x), fy = floor(y);
+    const float wx = x - fx, wy = y - fy;
+    const int i0 = clamp((int)fx, 0, (int)dx - 1), i1 = clamp((int)fx + 1, 0, (int)dx - 1);
+    const int j0 = clamp((int)fy, 0, (int)dy - 1), j1 = clamp((int)fy + 1, 0, (int)dy - 1);
+    const float3 a = column_at(volume, (ulong)j0 * dx + i0, dz, z),
+                 b = column_at(volume, (ulong)j0 * dx + i1, dz, z);
+    const float3 c = column_at(volume, (ulong)j1 * dx + i0, dz, z),
+                 d = column_at(volume, (ulong)j1 * dx + i1, dz, z);
+    t = mix(mix(a, b, wx), mix(c, d, wx), wy);
+  }
+  transmittance[id] = (float4)(t, 1.0f);
+}

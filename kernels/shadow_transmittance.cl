@@ -1,0 +1,70 @@
+/* shadow_transmittance.cl — the transparent shadow map's prefix pass (Chang & Lai, TR 1688 §4.1; PG 2011
+ * §4): walk each column of the light's grid from the light outwards, summing every voxel's optical depth,
+ * and store the transmittance at the far face of each slab (shadow_frame.h's packing).
+ *
+ * Per-voxel optical depth (method SHADOW_VOXEL), from the write count and the writers' material (the largest
+ * material id among them, grid channel `material`):
+ *   sheet       count x -ln(transmittance): each write is one crossing of the column's centre ray in centre
+ *               mode (conservative mode writes more voxels per crossing and over-counts);
+ *   opaque      blocks: everything beyond is 0;
+ *   dielectric  each write toggles inside/outside; sigma_a x the column's length inside (half a slab where
+ *               it toggles).
+ * SHADOW_UNIFORM (Eisemann & Decoret 2006 §5): every occupied voxel adds one constant optical depth. */
+#include "grid_view.h"
+#include "shadow_frame.h"
+
+#define SHADOW_VOXEL 0
+#define SHADOW_UNIFORM 1
+
+#ifndef SHADOW_GROUP
+#define SHADOW_GROUP 64
+#endif
+
+__kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_transmittance(
+    VOXR_GRID_VIEW_PARAMS, ShadowFrame frame, __global const RenderMaterial* materials, uint material_count,
+    uint method, float uniform_r, float uniform_g, float uniform_b, __global uint* volume) {
+  const GridView g = VOXR_GRID_VIEW();
+  const uint column = get_global_id(0);
+  const uint dx = frame.dims[0], dy = frame.dims[1], dz = frame.dims[2];
+  if (column >= dx * dy) return;
+  const uint i = column % dx, j = column / dx;
+  __global uint* out = volume + (ulong)column * dz;
+  float3 tau = (float3)(0.0f);
+  float3 sigma = (float3)(0.0f); /* absorption of the dielectric the column is inside, 0 outside */
+  int inside = 0, blocked = 0;
+  for (uint k = 0; k < dz; ++k) {
+    const ulong v = gv_linear(&g, (int)i, (int)j, (int)k);
+    if (gv_occupied(&g, v) && !blocked) {
+      if (method == SHADOW_UNIFORM) {
+        tau += (float3)(uniform_r, uniform_g, uniform_b);
+      } else {
+        const uint r = gv_rank(&g, v);
+        const uint count = gv_count(&g, r);
+        const uint m = min(gv_material(&g, r), material_count - 1u);
+        const RenderMaterial mat = materials[m];
+        if (mat.kind == VOXR_MATERIAL_OPAQUE) {
+          blocked = 1;
+        } else if (mat.kind == VOXR_MATERIAL_SHEET) {
+          const float3 t = max((float3)(mat.transmittance[0], mat.transmittance[1], mat.transmittance[2]),
+                               (float3)(1e-30f));
+          tau += (float)count * -log(t);
+          tau += sigma * sf_slab_length(&frame, i, j, k);
+        } else {
+          const float3 a = (float3)(mat.absorption[0], mat.absorption[1], mat.absorption[2]);
+          const float len = sf_slab_length(&frame, i, j, k);
+          if (count & 1u) {
+            /* One boundary inside the slab: half of the slab is inside (the entered or the left one). */
+            tau += (inside ? sigma : a) * (0.5f * len);
+            inside = !inside;
+            sigma = inside ? a : (float3)(0.0f);
+          } else {
+            tau += sigma * len;
+          }
+        }
+      }
+    } else if (!blocked) {
+      tau += sigma * sf_slab_length(&frame, i, j, k);
+    }
+    out[k] = blocked ? 0u : sf_pack(exp(-tau));
+  }
+}

@@ -1,0 +1,178 @@
+// Transparent shadow maps from the light's voxel grid against hand-computed transmittance: a leaf over a
+// floor, a glass slab, an opaque blocker, under directional and point lights, in centre and conservative
+// mode, and the uniform method's constant.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/generators.h"
+#include "render/light_frame.h"
+#include "render/render_scene.h"
+#include "render/transparent_shadow_map.h"
+#include "test_support.h"
+
+namespace voxr {
+namespace {
+
+// Quad in the plane y = height over [lo, hi] in x and z, two triangles sharing a diagonal.
+void add_quad(TriangleSoup& soup, float height, float lo, float hi, uint32_t material) {
+  const uint32_t b = uint32_t(soup.positions.size());
+  soup.positions.push_back({lo, height, lo, 1});
+  soup.positions.push_back({hi, height, lo, 1});
+  soup.positions.push_back({hi, height, hi, 1});
+  soup.positions.push_back({lo, height, hi, 1});
+  soup.triangles.push_back({b, b + 2, b + 1, material});
+  soup.triangles.push_back({b, b + 3, b + 2, material});
+}
+
+struct ShadowCase {
+  TriangleSoup soup;
+  std::vector<Material> materials;
+  Light light;
+};
+
+Material sheet(glm::vec3 t) {
+  Material m;
+  m.name = "leaf";
+  m.kind = MaterialKind::kSheet;
+  m.transmittance = t;
+  return m;
+}
+
+// Transmittance at floor points `points` (y = 0, normal +y).
+std::vector<glm::vec3> shadow_at(const ShadowCase& c, const std::vector<glm::vec3>& points, uint32_t res,
+                                 const ShadowMapOptions& options) {
+  ClRuntime& cl = test::runtime();
+  const RenderLight light = render_light(c.light, Environment{}, c.soup.anchor);
+  const LightFrame frame = fit_light_frame(light, c.soup.bounds(), c.soup, res);
+  const TriangleSoup projected = frame.projective() ? project_to_light_grid(c.soup, frame) : TriangleSoup{};
+  const TriangleSoup& light_soup = frame.projective() ? projected : c.soup;
+  DeviceMesh mesh = upload_mesh(cl, light_soup, frame.grid, SplitCull::kGrid);
+  const std::vector<RenderMaterial> mats = render_materials(c.materials);
+  cl::Buffer materials = cl.buffer(mats.size() * sizeof(RenderMaterial), "materials");
+  cl.upload(materials, mats.data(), mats.size() * sizeof(RenderMaterial), "upload materials");
+  std::vector<SurfaceSample> samples(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    SurfaceSample& s = samples[i];
+    s = SurfaceSample{};
+    for (int a = 0; a < 3; ++a) s.position[a] = points[i][a];
+    s.normal[1] = s.geometric_normal[1] = 1.0f;
+    s.triangle = 0;
+    s.material = 0;
+  }
+  cl::Buffer sample_buffer = cl.buffer(samples.size() * sizeof(SurfaceSample), "samples");
+  cl.upload(sample_buffer, samples.data(), samples.size() * sizeof(SurfaceSample), "upload samples");
+  cl::Buffer out = cl.buffer(samples.size() * 16, "transmittance");
+  TransparentShadowMap map(cl);
+  map.build(mesh, frame, materials, uint32_t(mats.size()),
+            uniform_optical_depth(c.soup, c.materials, frame.params.voxel_size), options);
+  map.lookup(sample_buffer, uint32_t(samples.size()), materials, uint32_t(mats.size()), light, options, out);
+  std::vector<glm::vec4> t(samples.size());
+  cl.download(out, t.data(), t.size() * 16, "download transmittance");
+  cl.finish();
+  std::vector<glm::vec3> rgb;
+  for (const glm::vec4& v : t) rgb.emplace_back(v);
+  return rgb;
+}
+
+ShadowCase leaf_over_floor(const Light& light) {
+  ShadowCase c;
+  Material floor;
+  floor.name = "floor";
+  c.materials = {floor, sheet({0.5f, 0.7f, 0.9f})};
+  add_quad(c.soup, 0.0f, -2.0f, 2.0f, 0);
+  add_quad(c.soup, 1.0f, -0.5f, 0.5f, 1);
+  c.light = light;
+  return c;
+}
+
+void expect_near3(glm::vec3 actual, glm::vec3 expected, float tol, const char* what) {
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(actual[a], expected[a], tol) << what << " channel " << a;
+}
+
+TEST(TransparentShadowMap, LeafOverFloorUnderDirectionalLight) {
+  Light light;
+  light.type = "directional";
+  light.direction = {0.0f, -1.0f, 0.0f};
+  const ShadowCase c = leaf_over_floor(light);
+  const std::vector<glm::vec3> points = {{0, 0, 0}, {0.2f, 0, -0.3f}, {1.5f, 0, 1.5f}, {-1.2f, 0, 0.1f}};
+  for (RasterMode mode : {RasterMode::kCenter}) {
+    ShadowMapOptions o;
+    o.mode = mode;
+    const auto t = shadow_at(c, points, 64, o);
+    // 10-bit quantization of the stored transmittance: 1/2046.
+    expect_near3(t[0], {0.5f, 0.7f, 0.9f}, 2e-3f, "under the leaf");
+    expect_near3(t[1], {0.5f, 0.7f, 0.9f}, 2e-3f, "under the leaf");
+    expect_near3(t[2], {1, 1, 1}, 2e-3f, "beside the leaf");
+    expect_near3(t[3], {1, 1, 1}, 2e-3f, "beside the leaf");
+  }
+}
+
+TEST(TransparentShadowMap, LeafOverFloorUnderPointLight) {
+  Light light;
+  light.type = "point";
+  light.position = {0.1f, 4.0f, 0.2f};
+  const ShadowCase c = leaf_over_floor(light);
+  const std::vector<glm::vec3> points = {{0, 0, 0}, {0.3f, 0, -0.2f}, {1.8f, 0, 1.8f}};
+  const auto t = shadow_at(c, points, 128, ShadowMapOptions{});
+  expect_near3(t[0], {0.5f, 0.7f, 0.9f}, 2e-3f, "under the leaf");
+  expect_near3(t[1], {0.5f, 0.7f, 0.9f}, 2e-3f, "under the leaf");
+  expect_near3(t[2], {1, 1, 1}, 2e-3f, "outside the shadow");
+}
+
+TEST(TransparentShadowMap, TwoLeavesInOneVoxelCountTwice) {
+  Light light;
+  light.type = "directional";
+  light.direction = {0.0f, -1.0f, 0.0f};
+  ShadowCase c = leaf_over_floor(light);
+  add_quad(c.soup, 1.001f, -0.5f, 0.5f, 1);  // a second leaf within the first one's voxels
+  const auto t = shadow_at(c, {{0.1f, 0, 0.1f}}, 64, ShadowMapOptions{});
+  expect_near3(t[0], {0.25f, 0.49f, 0.81f}, 2e-3f, "under both leaves");
+}
+
+TEST(TransparentShadowMap, ConservativeModeOverCountsAndUniformUsesOneConstant) {
+  Light light;
+  light.type = "directional";
+  light.direction = {0.3f, -1.0f, 0.1f};
+  const ShadowCase c = leaf_over_floor(light);
+  const std::vector<glm::vec3> points = {{0.0f, 0, 0.0f}};
+  ShadowMapOptions o;
+  o.mode = RasterMode::kConservative;
+  const auto conservative = shadow_at(c, points, 64, o);
+  // A tilted leaf covers more than one voxel per column in conservative mode: more than one crossing counted.
+  EXPECT_LT(conservative[0].x, 0.5f - 0.01f);
+  o.method = ShadowMethod::kUniform;
+  const auto uniform = shadow_at(c, points, 64, o);
+  // One sheet material: the constant is its own optical depth, and the slicemap's one voxel per column gives
+  // t.
+  expect_near3(uniform[0], {0.5f, 0.7f, 0.9f}, 2e-3f, "uniform under the leaf");
+}
+
+TEST(TransparentShadowMap, GlassSlabAbsorbsAlongItsThicknessAndOpaqueBlocks) {
+  Light light;
+  light.type = "directional";
+  light.direction = {0.0f, -1.0f, 0.0f};
+  ShadowCase c;
+  Material floor, glass, wall;
+  floor.name = "floor";
+  glass.name = "glass";
+  glass.kind = MaterialKind::kDielectric;
+  glass.absorption = {0.4f, 0.8f, 1.6f};
+  wall.name = "wall";
+  c.materials = {floor, glass, wall};
+  add_quad(c.soup, 0.0f, -2.0f, 2.0f, 0);
+  c.soup.append(test::box_soup({-1.5f, 0.5f, -0.5f}, {-0.5f, 1.0f, 0.5f}), glm::mat4(1.0f), 1);  // d = 0.5
+  c.soup.append(test::box_soup({0.5f, 0.5f, -0.5f}, {1.5f, 1.0f, 0.5f}), glm::mat4(1.0f), 2);
+  c.light = light;
+  const auto t = shadow_at(c, {{-1.0f, 0, 0.0f}, {1.0f, 0, 0.0f}, {0.0f, 0, 1.5f}}, 128, ShadowMapOptions{});
+  const glm::vec3 expected = glm::exp(-glass.absorption * 0.5f);
+  // Half-slab resolution at the two boundaries: within one slab's absorption.
+  const float slab = 0.02f * 1.6f * 4.0f;
+  expect_near3(t[0], expected, slab, "under the glass");
+  expect_near3(t[1], {0, 0, 0}, 1e-6f, "under the opaque box");
+  expect_near3(t[2], {1, 1, 1}, 2e-3f, "in the open");
+}
+
+}  // namespace
+}  // namespace voxr
