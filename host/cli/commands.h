@@ -16,5 +16,6 @@ struct Command {
 Command add_devices(CLI::App& app);
 Command add_voxelize(CLI::App& app);
 Command add_bench(CLI::App& app);
+Command add_render(CLI::App& app);
 
 }  // namespace voxr::cli

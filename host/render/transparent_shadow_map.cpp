@@ -29,9 +29,9 @@ VoxelizeOptions voxelize_options(const ShadowMapOptions& options) {
 
 TransparentShadowMap::TransparentShadowMap(ClRuntime& cl) : cl_(cl), voxelizer_(cl) {}
 
-std::vector<ProgramSpec> TransparentShadowMap::programs(const ShadowMapOptions&) const {
-  const Defines defines = channel_defines();
-  return {{"shadow_transmittance.cl", defines}, {"shadow_lookup.cl", {}}};
+void TransparentShadowMap::prepare(const ShadowMapOptions& options) {
+  voxelizer_.prepare(voxelize_options(options));
+  cl_.build_programs({{"shadow_transmittance.cl", channel_defines()}, {"shadow_lookup.cl", {}}});
 }
 
 void TransparentShadowMap::build(const DeviceMesh& light_mesh, const LightFrame& frame,
@@ -41,7 +41,6 @@ void TransparentShadowMap::build(const DeviceMesh& light_mesh, const LightFrame&
   VOXR_CHECK(material_count > 0);
   frame_ = frame;
   const VoxelizeOptions vopt = voxelize_options(options);
-  voxelizer_.prepare(vopt);
   voxelizer_.run(light_mesh, frame.grid, vopt, grid_, stats);
   if (!grid_.has_rank_index && options.method == ShadowMethod::kVoxel) build_rank_index(cl_, grid_);
   const uint64_t columns = uint64_t(frame.grid.dims.x) * frame.grid.dims.y;

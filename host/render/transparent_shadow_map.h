@@ -41,7 +41,8 @@ class TransparentShadowMap {
  public:
   explicit TransparentShadowMap(ClRuntime& cl);
 
-  std::vector<ProgramSpec> programs(const ShadowMapOptions& options) const;
+  // Builds (or loads) the voxelizer's and the shadow kernels' programs for `options`.
+  void prepare(const ShadowMapOptions& options);
 
   // Voxelizes `light_mesh` on frame.grid (directional: the scene's mesh; point: project_to_light_grid's)
   // and fills the transmittance volume. `materials` holds material_count RenderMaterials; uniform_tau is

@@ -1,0 +1,247 @@
+#include "cli/bench_shadows.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "bench/median.h"
+#include "cl/cl_runtime.h"
+#include "cli/process.h"
+#include "core/clock.h"
+#include "core/default_scene.h"
+#include "core/scene.h"
+#include "io/atomic_file.h"
+#include "metrics/image_metrics.h"
+#include "metrics/shadow_receivers.h"
+#include "reference/reference_scene.h"
+#include "render/frame_renderer.h"
+#include "render/render_scene.h"
+#include "render/shade_host.h"
+
+namespace voxr::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct MethodCase {
+  std::string label;  // voxel-center, uniform, ...
+  RenderOptions options;
+};
+
+MethodCase parse_method_case(const std::string& label) {
+  MethodCase m{label, {}};
+  if (label == "voxel-center" || label == "voxel") {
+    m.options.shadows = ShadowMethod::kVoxel;
+    m.options.mode = RasterMode::kCenter;
+  } else if (label == "voxel-conservative") {
+    m.options.shadows = ShadowMethod::kVoxel;
+    m.options.mode = RasterMode::kConservative;
+  } else {
+    m.options.shadows = parse_shadow_method(label);
+    if (m.options.shadows == ShadowMethod::kReference || m.options.shadows == ShadowMethod::kNone)
+      fail("bench shadows: '{}' is measured in every run (reference) or has no shadows (none)", label);
+  }
+  return m;
+}
+
+struct Row {
+  std::string scene, method, mode;
+  uint32_t resolution = 0;
+  double frame_ms = 0, frame_min = 0, frame_max = 0;
+  TransmittanceError error{};
+  double psnr = 0;
+  std::string light_grid;
+  uint64_t device_bytes = 0;
+  uint64_t triangles = 0;
+};
+
+std::string scene_label(const std::string& scene) {
+  return scene == "default" ? "default" : fs::path(scene).stem().string();
+}
+
+double load_average() {
+  std::ifstream f("/proc/loadavg");
+  double a = 0.0;
+  f >> a;
+  return a;
+}
+
+std::string fmt_psnr(double p) {
+  return std::isfinite(p) ? fmt::format("{:.2f}", p) : "inf";
+}
+
+}  // namespace
+
+int run_bench_shadows(const BenchShadowsArgs& args) {
+  ClRuntime cl(args.device);
+  const std::string device =
+      fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name, cl.device().driver_version);
+  fmt::print("device: {}\n", device);
+  const size_t x = args.size.find('x');
+  if (x == std::string::npos) fail("--size '{}': expected WIDTHxHEIGHT", args.size);
+  const uint32_t width = uint32_t(std::stoul(args.size.substr(0, x)));
+  const uint32_t height = uint32_t(std::stoul(args.size.substr(x + 1)));
+  std::vector<MethodCase> methods;
+  for (const std::string& m : args.methods) methods.push_back(parse_method_case(m));
+
+  std::vector<Row> rows;
+  std::string fresh_table;
+  for (const std::string& scene_name : args.scenes) {
+    Scene scene = scene_name == "default" ? default_scene() : load_input(scene_name);
+    const std::vector<Material> materials = scene.materials;
+    const TriangleSoup soup = take_scene_triangles(scene);
+    validate_soup(soup, scene.source);
+    const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, soup.bounds(), width, height);
+    const RenderLight light = render_light(scene.light, scene.environment, soup.anchor);
+    const std::vector<RenderMaterial> render_mats = render_materials(materials);
+    const std::string label = scene_label(scene_name);
+    fmt::print("{}: {} triangles, {}x{}, load {:.2f}\n", label, soup.triangle_count(), width, height,
+               load_average());
+    std::fflush(stdout);
+
+    FrameRenderer renderer(cl);
+    renderer.set_scene(soup, materials);
+    // The exact transmittance at the camera's samples, and what it costs Embree per frame.
+    RenderOptions first;
+    first.shadows = ShadowMethod::kNone;
+    first.keep_samples = true;
+    renderer.prepare(first);
+    const RenderedFrame base = renderer.render(light, camera, first);
+    std::vector<double> ref_ms;
+    std::vector<glm::vec3> exact;
+    for (int r = 0; r < std::max(1, args.repeat / 2); ++r) {
+      const auto start = Clock::now();
+      ReferenceScene reference(soup, materials);
+      exact = reference.transmittance(light, base.samples);
+      const ImageRgba img = shade_samples(base.samples, exact, render_mats, light, width, height);
+      ref_ms.push_back(ms_since(start));
+    }
+    const std::vector<uint8_t> mask = shadow_receivers(base.samples, render_mats, light);
+    const ImageRgba exact_image = shade_samples(base.samples, exact, render_mats, light, width, height);
+    {
+      Row r;
+      r.scene = label;
+      r.method = "reference";
+      r.mode = "embree";
+      r.frame_ms = median(ref_ms);
+      r.frame_min = *std::min_element(ref_ms.begin(), ref_ms.end());
+      r.frame_max = *std::max_element(ref_ms.begin(), ref_ms.end());
+      r.error.receivers = std::count(mask.begin(), mask.end(), uint8_t(1));
+      r.psnr = std::numeric_limits<double>::infinity();
+      r.triangles = soup.triangle_count();
+      r.light_grid = "BVH rebuild + shadow rays, host";
+      rows.push_back(r);
+      fmt::print("  reference (BVH build + shadow rays): {:.1f} ms [{:.1f}, {:.1f}]\n", r.frame_ms, r.frame_min,
+                 r.frame_max);
+    }
+
+    for (const MethodCase& m : methods) {
+      for (uint32_t res : args.resolutions) {
+        RenderOptions o = m.options;
+        o.shadow_resolution = res;
+        renderer.prepare(o);
+        for (int w = 0; w < args.warmup; ++w) renderer.render(light, camera, o);
+        std::vector<double> ms;
+        FrameStats stats;
+        for (int r = 0; r < args.repeat; ++r) {
+          renderer.render(light, camera, o, {}, &stats);
+          ms.push_back(stats.frame_ms);
+        }
+        o.keep_samples = true;
+        const RenderedFrame frame = renderer.render(light, camera, o);
+        Row row;
+        row.scene = label;
+        row.method = shadow_method_info(o.shadows).name;
+        row.mode = o.shadows == ShadowMethod::kVoxel ? raster_mode_name(o.mode) : "-";
+        row.resolution = res;
+        row.frame_ms = median(ms);
+        row.frame_min = *std::min_element(ms.begin(), ms.end());
+        row.frame_max = *std::max_element(ms.begin(), ms.end());
+        row.error = transmittance_error(frame.transmittance, exact, mask, 0.05);
+        row.psnr = psnr(frame.image, exact_image);
+        row.light_grid = stats.light.describe();
+        row.device_bytes = stats.device_bytes;
+        row.triangles = soup.triangle_count();
+        rows.push_back(row);
+        fmt::print("  {:<18} {:>4}: {:8.2f} ms [{:.2f}, {:.2f}]  RMSE {:.4f} max {:.3f} >0.05 {:.2f}%  PSNR {} "
+                   "({}; load {:.2f})\n",
+                   m.label, res, row.frame_ms, row.frame_min, row.frame_max, row.error.rmse, row.error.max_abs,
+                   100.0 * row.error.share_over_threshold, fmt_psnr(row.psnr), row.light_grid, load_average());
+        std::fflush(stdout);
+      }
+    }
+
+    // What a user gets: a fresh `voxr render` process.
+    if (args.fresh > 0) {
+      const fs::path self = executable_path();
+      const fs::path image = fs::temp_directory_path() / fmt::format("voxr-bench-shadows-{}.png", ::getpid());
+      std::vector<double> wall;
+      for (int r = 0; r < args.fresh; ++r) {
+        std::vector<std::string> argv = {self.string(), "render"};
+        if (scene_name != "default") argv.push_back(scene_name);
+        for (const std::string& a : {std::string("--shadows"), std::string("voxel"), std::string("--shadow-res"),
+                                     std::string("256"), std::string("--size"), args.size, std::string("-q"),
+                                     std::string("-o"), image.string()})
+          argv.push_back(a);
+        if (!args.device.empty()) {
+          argv.push_back("--device");
+          argv.push_back(args.device);
+        }
+        const auto start = Clock::now();
+        if (run_program(argv) != 0) fail("the fresh process `voxr render` failed (see above)");
+        wall.push_back(ms_since(start));
+      }
+      std::error_code ec;
+      fs::remove(image, ec);
+      fresh_table += fmt::format("| {} | {} | {:.0f} | {:.0f} | {:.0f} |\n", label, soup.triangle_count(),
+                                 median(wall), *std::min_element(wall.begin(), wall.end()),
+                                 *std::max_element(wall.begin(), wall.end()));
+      fmt::print("  fresh `voxr render --shadows voxel --shadow-res 256`: {:.0f} ms\n", median(wall));
+    }
+  }
+
+  std::ostringstream csv;
+  csv << "scene,method,mode,resolution,frame_ms,frame_ms_min,frame_ms_max,rmse,max_abs,share_over_0.05,psnr,"
+         "receivers,triangles,device_bytes,light_grid\n";
+  for (const Row& r : rows)
+    csv << fmt::format("{},{},{},{},{:.3f},{:.3f},{:.3f},{:.5f},{:.4f},{:.5f},{},{},{},{},\"{}\"\n", r.scene,
+                       r.method, r.mode, r.resolution, r.frame_ms, r.frame_min, r.frame_max, r.error.rmse,
+                       r.error.max_abs, r.error.share_over_threshold, fmt_psnr(r.psnr), r.error.receivers,
+                       r.triangles, r.device_bytes, r.light_grid);
+  std::ostringstream md;
+  md << fmt::format("# voxr bench shadows\n\nDevice: {}. Image {}. Warm frames: median of {} after {} warm-up "
+                    "[min, max], wall time of one whole frame read back to the host. Errors at the visible "
+                    "receivers against Embree's exact transmittance at the same points.\n\n",
+                    device, args.size, args.repeat, args.warmup);
+  md << "| scene | method | mode | res | frame ms | [min, max] | T RMSE | T max | > 0.05 | PSNR dB | light grid |\n"
+        "|---|---|---|---:|---:|---|---:|---:|---:|---:|---|\n";
+  for (const Row& r : rows)
+    md << fmt::format("| {} | {} | {} | {} | {:.2f} | [{:.2f}, {:.2f}] | {:.4f} | {:.3f} | {:.2f}% | {} | {} |\n",
+                      r.scene, r.method, r.mode, r.resolution ? std::to_string(r.resolution) : "-", r.frame_ms,
+                      r.frame_min, r.frame_max, r.error.rmse, r.error.max_abs,
+                      100.0 * r.error.share_over_threshold, fmt_psnr(r.psnr), r.light_grid);
+  if (!fresh_table.empty())
+    md << "\nFresh processes, `voxr render SCENE --shadows voxel --shadow-res 256 --size " << args.size
+       << "` (wall ms, median [min, max] of " << args.fresh << "; includes opening the device, loading the "
+       << "programs from the cache, reading the scene and writing the PNG):\n\n| scene | triangles | ms | min | "
+          "max |\n|---|---:|---:|---:|---:|\n"
+       << fresh_table;
+  write_file_atomically(args.out + ".csv", csv.str());
+  write_file_atomically(args.out + ".md", md.str());
+  fmt::print("wrote {}.csv\nwrote {}.md\n", args.out, args.out);
+  const fs::path script = fs::path(VOXR_SOURCE_DIR) / "bench" / "shadow_charts.py";
+  if (fs::exists(script)) {
+    const int status = run_program({"/usr/bin/env", "python3", script.string(), args.out + ".csv", args.out + "-charts"});
+    if (status != 0) fmt::print(stderr, "voxr: warning: the charts were not drawn ({} failed)\n", script.string());
+  }
+  return 0;
+}
+
+}  // namespace voxr::cli

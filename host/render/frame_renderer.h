@@ -1,0 +1,90 @@
+// One rendered frame with transparent shadows, all on the device: fit the light's grid to what the camera
+// can see, voxelize the casters from the light and accumulate transmittance (voxel, uniform), or rasterize
+// light-space maps (filter, opaque); rasterize the camera's visibility buffer and resolve it; look up each
+// receiver's transmittance; shade. Only the image (and, on request, the samples and their transmittance for
+// metrics) is read back. A deforming scene calls set_scene every frame: nothing is precomputed.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "cl/cl_runtime.h"
+#include "cl/scratch_buffers.h"
+#include "core/material.h"
+#include "core/triangle_soup.h"
+#include "render/camera_frame.h"
+#include "render/image_rgba.h"
+#include "render/light_frame.h"
+#include "render/light_space_maps.h"
+#include "render/shadow_method.h"
+#include "render/transparent_shadow_map.h"
+#include "render/visibility_rasterizer.h"
+#include "voxelize/device_mesh.h"
+
+namespace voxr {
+
+struct RenderOptions {
+  ShadowMethod shadows = ShadowMethod::kVoxel;
+  uint32_t shadow_resolution = 256;  // columns along the longer side of the light's grid (and its slabs)
+  RasterMode mode = RasterMode::kCenter;  // voxel: the light voxelizer's rule
+  float bias = 1.0f;                      // slabs (or depth-map texels) towards the light
+  float normal_offset = 0.5f;             // columns off the receiver's surface
+  bool keep_samples = false;              // read back the samples and their transmittance too
+};
+
+// Transmittance computed on the host for samples read back (the Embree reference): one RGB per sample.
+using HostTransmittance = std::function<std::vector<glm::vec3>(std::span<const SurfaceSample>)>;
+
+struct FrameStats {
+  LightFrame light;                        // the light's grid (voxel, uniform, filter, opaque)
+  std::map<std::string, double> stage_ms;  // profiled kernel time by stage
+  double host_ms = 0.0;                    // host work inside the frame: fitting, projecting, the reference
+  double frame_ms = 0.0;                   // wall time of render(), from its start to the image on the host
+  uint64_t device_bytes = 0;               // the shadow method's grid or maps
+  uint64_t light_triangles = 0;            // triangles voxelized or rasterized from the light
+};
+
+struct RenderedFrame {
+  ImageRgba image;
+  std::vector<SurfaceSample> samples;     // keep_samples: one per pixel, row 0 at the top
+  std::vector<glm::vec3> transmittance;   // keep_samples: the shadow method's, per pixel
+};
+
+class FrameRenderer {
+ public:
+  explicit FrameRenderer(ClRuntime& cl);
+  ~FrameRenderer();
+
+  // Builds (or loads) every program a frame with `options` runs.
+  void prepare(const RenderOptions& options);
+
+  // The scene of the next frames: triangles (anchor-relative; a CPU device reads them in place, so `soup`
+  // must stay alive and unchanged until the next set_scene), materials and angle-weighted vertex normals.
+  // Throws voxr::Error for a material id out of range.
+  void set_scene(const TriangleSoup& soup, const std::vector<Material>& materials);
+
+  // Renders one frame. `host_transmittance` is required for ShadowMethod::kReference.
+  RenderedFrame render(const RenderLight& light, const CameraFrame& camera, const RenderOptions& options,
+                       const HostTransmittance& host_transmittance = {}, FrameStats* stats = nullptr);
+
+ private:
+  ClRuntime& cl_;
+  VisibilityRasterizer rasterizer_;
+  TransparentShadowMap shadow_map_;
+  LightSpaceMaps light_maps_;
+  const TriangleSoup* soup_ = nullptr;
+  std::vector<Material> materials_;
+  uint32_t material_count_ = 0;
+  std::unique_ptr<DeviceMesh> mesh_;
+  cl::Buffer materials_buffer_, vertex_normals_;
+  GrowingBuffer visibility_, samples_, transmittance_, image_;
+};
+
+}  // namespace voxr

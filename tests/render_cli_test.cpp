@@ -1,0 +1,72 @@
+// voxr render end to end: the image and the report with every shadow method, the comparison with the
+// reference, and one-line errors for bad flags and outputs.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "cli_support.h"
+#include "io/image_file.h"
+
+namespace voxr {
+namespace {
+
+namespace fs = std::filesystem;
+using test::run_voxr;
+using test::scratch;
+
+TEST(RenderCli, EveryMethodWritesAnImageAndAReport) {
+  for (const std::string method : {"voxel", "uniform", "filter", "opaque", "reference", "none"}) {
+    const fs::path image = scratch() / ("render-" + method + ".png");
+    const fs::path report = scratch() / ("render-" + method + ".json");
+    const test::CliResult r = run_voxr("render --size 64x48 --shadow-res 64 --shadows " + method + " -o " +
+                                       image.string() + " --report " + report.string());
+    ASSERT_EQ(r.code, 0) << method << ": " << r.err;
+    const ImageRgba img = read_image(image.string());
+    EXPECT_EQ(img.width, 64u);
+    EXPECT_EQ(img.height, 48u);
+    const nlohmann::json j = nlohmann::json::parse(test::slurp(report));
+    EXPECT_EQ(j["shadows"], method);
+    EXPECT_GT(j["ms"]["frame"].get<double>(), 0.0);
+    if (method != "reference" && method != "none") EXPECT_TRUE(j.contains("light_grid")) << method;
+  }
+}
+
+TEST(RenderCli, CompareReferenceReportsErrorsAndWritesTheErrorImage) {
+  const fs::path image = scratch() / "compare.png";
+  const fs::path report = scratch() / "compare.json";
+  const test::CliResult r = run_voxr("render --size 80x60 --shadow-res 128 --compare-reference -o " +
+                                     image.string() + " --report " + report.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(test::slurp(report));
+  const auto& c = j["compare_reference"];
+  EXPECT_GT(c["receivers"].get<uint64_t>(), 1000u);
+  EXPECT_GE(c["transmittance_rmse"].get<double>(), 0.0);
+  EXPECT_LT(c["transmittance_rmse"].get<double>(), 0.1);
+  EXPECT_TRUE(fs::exists(scratch() / "compare.error.png"));
+  EXPECT_NE(r.out.find("vs exact"), std::string::npos) << r.out;
+}
+
+TEST(RenderCli, BadFlagsAndOutputsAreOneLineErrors) {
+  struct Case {
+    std::string args, needle;
+  };
+  const fs::path out = scratch() / "bad.png";
+  for (const Case& c : std::vector<Case>{
+           {"render -o " + (scratch() / "x.bmp").string(), "x.bmp: the image format is chosen by extension"},
+           {"render --shadows soft -o " + out.string(), "unknown shadow method 'soft'"},
+           {"render --shadows uniform --mode conservative -o " + out.string(), "--mode applies to --shadows voxel"},
+           {"render --size 64 -o " + out.string(), "--size '64'"},
+           {"render " + (scratch() / "missing.json").string() + " -o " + out.string(), "missing.json: no such file"},
+       }) {
+    const test::CliResult r = run_voxr(c.args);
+    EXPECT_NE(r.code, 0) << c.args;
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << c.args << "\nstderr: " << r.err;
+    EXPECT_EQ(test::count_lines(r.err), 1) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+}
+
+}  // namespace
+}  // namespace voxr
