@@ -29,19 +29,50 @@ class ReferenceScene {
   ReferenceScene(const ReferenceScene&) = delete;
   ReferenceScene& operator=(const ReferenceScene&) = delete;
 
-  double build_ms() const;  // wall time of the BVH build
+  // Wall time of the BVH build. Rays with a direction component of 0 (axis-parallel) are also traced in
+  // mirrored copies of the BVH (an Embree node test loses boxes whose upper bound lies exactly on such a
+  // ray); those copies are built on first need, inside intersect/transmittance, and not counted here.
+  double build_ms() const;
+
+  // Largest side of the soup's bounds (1 for an empty scene): the scale of the tolerances below.
+  float scene_size() const;
 
   // The nearest hit of the ray origin + t * dir, t in (t_near, t_far), as a SurfaceSample (triangle =
   // VOXR_NO_TRIANGLE on a miss; normals unit and turned towards the origin; shading normal interpolated from
   // angle-weighted vertex normals, as the rasterizer's resolve does).
+  // Embree traces the normalized direction: position = origin + t * dir as Embree found it, distance =
+  // t * |dir| (world units); barycentric = Embree's (u, v), the weights of vertices 1 and 2. Shading normal:
+  // render/vertex_normals.h interpolated with (1 - u - v, u, v) and normalized; where it deviates from the
+  // triangle's normal by more than 60 degrees (a sharp crease) the triangle's normal is used.
+  // Each normal is then flipped on its own if it faces away from the origin. Throws voxr::Error for a zero
+  // or non-finite dir.
   SurfaceSample intersect(const glm::vec3& origin, const glm::vec3& dir, float t_near = 0.0f,
                           float t_far = 3.0e38f) const;
+
+  // Hits nearer than kStartEpsilon * scene_size() along a shadow ray are ignored (with those on `self`): a
+  // surface point computed by a primary ray lies off its plane by rounding, and would otherwise see its own
+  // or a neighbouring coplanar triangle. A surface closer than that to the receiver casts no shadow on it.
+  static constexpr float kStartEpsilon = 1e-5f;
+  // Hits less than kMergeDistance * scene_size() apart along a shadow ray, on triangles that share a vertex
+  // index, are one meeting of the ray with one surface (at a shared edge or vertex).
+  static constexpr float kMergeDistance = 1e-5f;
 
   // RGB transmittance from `point` (on triangle `self`, VOXR_NO_TRIANGLE for none) to the light, along the
   // straight segment. Every crossing counts once: a ray through an edge shared by two triangles of one mesh
   // crosses one surface, two coincident triangles are two surfaces.
+  // How: one Embree traversal from `point` towards the light (the light's position, or -direction to
+  // infinity) with a filter that records every hit and rejects it; the hits are sorted by t and grouped as
+  // kMergeDistance says. A group where the ray only touches the surface (through a shared edge whose two
+  // faces lie on one side of the ray, or a vertex whose faces face the ray with both sides by winding: a
+  // grazed fold or corner) is no crossing. Every other group is one crossing of each distinct material in it:
+  // an opaque one before the light gives 0, a sheet multiplies by its transmittance, a dielectric toggles
+  // inside/outside of its material id, and the lengths inside multiply by exp(-sigma_a * length).
+  // Inside at the start: the ray is followed past a point light to infinity, and an odd number of crossings
+  // of a dielectric over the whole ray means the segment starts inside it (dielectric meshes are closed), so
+  // receivers on or inside glass are right too; a point light inside a solid ends its last interval.
   glm::vec3 transmittance(const RenderLight& light, const glm::vec3& point, uint32_t self) const;
-  // The same for every sample with a triangle (others get 1), on all cores.
+  // The same for every sample with a triangle (others get 1), on all cores (std::thread, blocks of samples;
+  // the result does not depend on the thread count).
   std::vector<glm::vec3> transmittance(const RenderLight& light,
                                        std::span<const SurfaceSample> samples) const;
 
