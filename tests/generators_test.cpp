@@ -147,6 +147,50 @@ TEST(Generators, TreeHasClosedTrunkAndSheetLeaves) {
   EXPECT_EQ(make_tree(2.0f, 3).triangle_count() - bare.triangle_count(), 1200u);
 }
 
+TEST(Generators, FoliageFillsTheBoxWithSheetLeaves) {
+  FoliageParams p;
+  p.size = glm::vec3(2.0f, 1.0f, 1.5f);
+  p.leaves = 500;
+  p.leaf_size = 0.1f;
+  p.seed = 5;
+  const TriangleSoup block = make_foliage(p);
+  EXPECT_EQ(block.triangle_count(), 2u * 500u);
+  EXPECT_EQ(block.vertex_count(), 4u * 500u);
+  for (const glm::uvec4& t : block.triangles) ASSERT_EQ(t.w, kFoliageLeafMaterial);
+  // Open quads, each with 4 boundary edges and one shared diagonal, consistently wound.
+  const MeshTopology e = mesh_topology(block);
+  EXPECT_EQ(e.boundary, 4u * 500u);
+  EXPECT_EQ(e.nonmanifold, 0u);
+  EXPECT_EQ(e.misoriented, 0u);
+  EXPECT_EQ(validate_soup(block, "foliage"), 0u);
+  // Every vertex inside the box; the leaves spread over most of it.
+  const glm::vec3 half = 0.5f * p.size;
+  for (const glm::vec4& v : block.positions)
+    ASSERT_TRUE(glm::all(glm::lessThanEqual(glm::abs(glm::vec3(v)), half + 1e-6f)))
+        << v.x << " " << v.y << " " << v.z;
+  const Bounds b = block.bounds();
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_LT(b.lo[a], -0.9f * half[a]) << "axis " << a;
+    EXPECT_GT(b.hi[a], 0.9f * half[a]) << "axis " << a;
+  }
+  // Leaf k is vertices 4k..4k+3: a rectangle of length in [0.75, 1.25) leaf sizes, half as wide.
+  for (size_t k = 0; k < p.leaves; ++k) {
+    const glm::vec3 v0(block.positions[4 * k]), v1(block.positions[4 * k + 1]),
+        v2(block.positions[4 * k + 2]);
+    const float length = glm::length(v1 - v0), width = glm::length(v2 - v1);
+    ASSERT_GE(length, 0.75f * p.leaf_size - 1e-6f);
+    ASSERT_LT(length, 1.25f * p.leaf_size + 1e-6f);
+    ASSERT_NEAR(width, 0.5f * length, 1e-5f);
+    ASSERT_NEAR(glm::dot(v1 - v0, v2 - v1), 0.0f, 1e-6f);
+  }
+  // Same parameters, same block; another seed, another block; no leaves, no triangles.
+  EXPECT_TRUE(same_soup(make_foliage(p), block));
+  p.seed = 6;
+  EXPECT_FALSE(same_soup(make_foliage(p), block));
+  p.leaves = 0;
+  EXPECT_EQ(make_foliage(p).triangle_count(), 0u);
+}
+
 TEST(Generators, PlaneFacesUp) {
   const int n = 4;
   const TriangleSoup plane = make_plane(glm::vec2(4.0f, 2.0f), n);
@@ -203,6 +247,22 @@ TEST(Generators, DispatcherReadsParams) {
   EXPECT_EQ(make_generated("plane", {{"size", {3, 1}}, {"subdivisions", 2}}, "s.json").triangle_count(), 8u);
   EXPECT_TRUE(
       same_soup(make_generated("tree", {{"density", 0.5}, {"seed", 9}}, "s.json"), make_tree(0.5f, 9)));
+  FoliageParams f;
+  f.size = glm::vec3(2.0f, 1.0f, 1.5f);
+  f.leaves = 50;
+  f.leaf_size = 0.2f;
+  f.seed = 3;
+  EXPECT_TRUE(same_soup(
+      make_generated("foliage", {{"size", {2, 1, 1.5}}, {"leaves", 50}, {"leaf_size", 0.2}, {"seed", 3}},
+                     "s.json"),
+      make_foliage(f)));
+  // Density is leaves per unit volume: 100 * (2 * 1 * 1.5) = 300 leaves.
+  f.leaves = 300;
+  EXPECT_TRUE(same_soup(
+      make_generated("foliage", {{"size", {2, 1, 1.5}}, {"density", 100}, {"leaf_size", 0.2}, {"seed", 3}},
+                     "s.json"),
+      make_foliage(f)));
+  EXPECT_TRUE(same_soup(make_generated("foliage", nullptr, "s.json"), make_foliage()));
   VaseParams p;
   p.profile = {0.4f, 0.3f, 0.35f};
   p.rows = 8;
@@ -223,7 +283,7 @@ TEST(Generators, DispatcherErrorsNameTheKey) {
   EXPECT_EQ(generated_error("torus", {{"majr", 2}}),
             "s.json: unknown key 'meshes[2].params.majr' (did you mean 'meshes[2].params.major'?)");
   EXPECT_EQ(generated_error("cube", nullptr),
-            "s.json: unknown generator 'cube' (known: torus, sphere, box, vase, tree, plane)");
+            "s.json: unknown generator 'cube' (known: torus, sphere, box, vase, tree, plane, foliage)");
   EXPECT_EQ(generated_error("torus", {{"rings", 2.5}}),
             "s.json: 'meshes[2].params.rings' must be an integer in [3, 4096] (got 2.5)");
   EXPECT_EQ(generated_error("torus", {{"minor", 1.5}}),
@@ -235,6 +295,22 @@ TEST(Generators, DispatcherErrorsNameTheKey) {
   EXPECT_NE(generated_error("vase", {{"thickness", 0.5}}).find("'meshes[2].params.profile'"),
             std::string::npos);
   EXPECT_NE(generated_error("tree", {{"density", -1}}).find("'meshes[2].params.density'"), std::string::npos);
+  EXPECT_EQ(generated_error("foliage", {{"leaf_sise", 0.1}}),
+            "s.json: unknown key 'meshes[2].params.leaf_sise' (did you mean 'meshes[2].params.leaf_size'?)");
+  EXPECT_EQ(generated_error("foliage", {{"leaves", 10}, {"density", 5}}),
+            "s.json: 'meshes[2].params.density' cannot be given with 'leaves' (give one of them)");
+  EXPECT_EQ(generated_error("foliage", {{"leaves", 1.5}}),
+            "s.json: 'meshes[2].params.leaves' must be an integer in [0, 4194304] (got 1.5)");
+  EXPECT_NE(generated_error("foliage", {{"density", -1}}).find("'meshes[2].params.density' must be >= 0"),
+            std::string::npos);
+  EXPECT_NE(generated_error("foliage", {{"density", 1e7}}).find("'meshes[2].params.density'"),
+            std::string::npos);
+  EXPECT_NE(generated_error("foliage", {{"size", {1, 0.1, 1}}, {"leaf_size", 0.1}})
+                .find("'meshes[2].params.leaf_size' must be below 0.07155"),
+            std::string::npos);
+  EXPECT_NE(
+      generated_error("foliage", {{"size", {1, -1, 1}}}).find("'meshes[2].params.size' must be positive"),
+      std::string::npos);
   EXPECT_NE(generated_error("plane", 3).find("'meshes[2].params' must be an object"), std::string::npos);
 }
 

@@ -168,7 +168,8 @@ TEST(Scene, BadValuesNameTheirKey) {
       {R"({"meshes": [{"material": "default"}]})",
        "s.json: 'meshes[0]' needs exactly one of 'file' and 'generator'"},
       {R"({"meshes": [{"generator": "cube"}]})",
-       "s.json: 'meshes[0].generator' must be one of torus, sphere, box, vase, tree, plane (got \"cube\")"},
+       "s.json: 'meshes[0].generator' must be one of torus, sphere, box, vase, tree, plane, foliage (got "
+       "\"cube\")"},
       {R"({"meshes": [{"generator": "torus", "params": {"rings": 2}}]})",
        "s.json: 'meshes[0].params.rings' must be an integer in [3, 4096] (got 2)"},
       {R"({"meshes": [{"generator": "box", "subdivide": 9}]})",

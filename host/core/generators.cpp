@@ -17,6 +17,8 @@ namespace {
 constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
 // Upper bound on any tessellation count: keeps a typo from asking for billions of triangles.
 constexpr int kMaxTessellation = 4096;
+// Upper bound on a foliage block's leaves (2 triangles each), for the same reason.
+constexpr int64_t kMaxFoliageLeaves = int64_t(1) << 22;
 
 uint32_t add_vertex(TriangleSoup& soup, glm::vec3 p) {
   soup.positions.push_back(glm::vec4(p, 1.0f));
@@ -82,6 +84,27 @@ float profile_radius(const std::vector<float>& radii, float t) {
 // standard, unlike the standard distributions, so trees are identical across standard libraries.
 float uniform(std::mt19937& rng) {
   return float(rng() >> 8) * (1.0f / 16777216.0f);
+}
+
+// One leaf centred at `c`: an open quad sheet (2 triangles, 4 vertices of its own) with a random unit normal,
+// spun by a random angle about it, `length` in [min_length, min_length + length_span) along the spin
+// direction and half that across. Draws 4 numbers from `rng` (normal, spin, length, in that order).
+void add_random_leaf(TriangleSoup& soup, std::mt19937& rng, glm::vec3 c, float min_length, float length_span,
+                     uint32_t material) {
+  // Random unit normal, then a tangent frame spun by a random angle.
+  const float z = 2.0f * uniform(rng) - 1.0f, phi = kTwoPi * uniform(rng);
+  const float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+  const glm::vec3 n(s * std::cos(phi), z, s * std::sin(phi));
+  const glm::vec3 helper = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  const glm::vec3 t0 = glm::normalize(glm::cross(helper, n)), t1 = glm::cross(n, t0);
+  const float spin = kTwoPi * uniform(rng);
+  const glm::vec3 a = std::cos(spin) * t0 + std::sin(spin) * t1, b = glm::cross(n, a);
+  const float length = min_length + length_span * uniform(rng), width = 0.5f * length;
+  const glm::vec3 da = 0.5f * length * a, db = 0.5f * width * b;
+  // a x b = n, so (-a-b, a-b, a+b, -a+b) is counter-clockwise seen from n.
+  const uint32_t v0 = add_vertex(soup, c - da - db), v1 = add_vertex(soup, c + da - db);
+  const uint32_t v2 = add_vertex(soup, c + da + db), v3 = add_vertex(soup, c - da + db);
+  add_quad(soup, v0, v1, v2, v3, material);
 }
 
 }  // namespace
@@ -181,21 +204,24 @@ TriangleSoup make_tree(float density, uint32_t seed) {
     do {  // uniform in the unit ball
       q = glm::vec3(uniform(rng), uniform(rng), uniform(rng)) * 2.0f - 1.0f;
     } while (glm::dot(q, q) > 1.0f);
-    const glm::vec3 c = crown_center + q * crown_radii;
-    // Random unit normal, then a tangent frame spun by a random angle.
-    const float z = 2.0f * uniform(rng) - 1.0f, phi = kTwoPi * uniform(rng);
-    const float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    const glm::vec3 n(s * std::cos(phi), z, s * std::sin(phi));
-    const glm::vec3 helper = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-    const glm::vec3 t0 = glm::normalize(glm::cross(helper, n)), t1 = glm::cross(n, t0);
-    const float spin = kTwoPi * uniform(rng);
-    const glm::vec3 a = std::cos(spin) * t0 + std::sin(spin) * t1, b = glm::cross(n, a);
-    const float length = 0.08f + 0.05f * uniform(rng), width = 0.5f * length;
-    const glm::vec3 da = 0.5f * length * a, db = 0.5f * width * b;
-    // a x b = n, so (-a-b, a-b, a+b, -a+b) is counter-clockwise seen from n.
-    const uint32_t v0 = add_vertex(soup, c - da - db), v1 = add_vertex(soup, c + da - db);
-    const uint32_t v2 = add_vertex(soup, c + da + db), v3 = add_vertex(soup, c - da + db);
-    add_quad(soup, v0, v1, v2, v3, kTreeLeafMaterial);
+    add_random_leaf(soup, rng, crown_center + q * crown_radii, 0.08f, 0.05f, kTreeLeafMaterial);
+  }
+  return soup;
+}
+
+TriangleSoup make_foliage(const FoliageParams& p) {
+  VOXR_CHECK(p.leaf_size > 0.0f);
+  const float reach = kFoliageLeafReach * p.leaf_size;
+  VOXR_CHECK(p.size.x > 2.0f * reach && p.size.y > 2.0f * reach && p.size.z > 2.0f * reach);
+  TriangleSoup soup;
+  soup.positions.reserve(4 * size_t(p.leaves));
+  soup.triangles.reserve(2 * size_t(p.leaves));
+  std::mt19937 rng(p.seed);
+  const glm::vec3 half = 0.5f * p.size - glm::vec3(reach);  // where leaf centres may lie, +-half
+  for (uint32_t l = 0; l < p.leaves; ++l) {
+    const glm::vec3 u(uniform(rng), uniform(rng), uniform(rng));
+    add_random_leaf(soup, rng, (2.0f * u - 1.0f) * half, 0.75f * p.leaf_size, 0.5f * p.leaf_size,
+                    kFoliageLeafMaterial);
   }
   return soup;
 }
@@ -219,7 +245,7 @@ TriangleSoup make_plane(glm::vec2 size, int subdivisions) {
 }
 
 const std::vector<std::string>& generator_names() {
-  static const std::vector<std::string> names{"torus", "sphere", "box", "vase", "tree", "plane"};
+  static const std::vector<std::string> names{"torus", "sphere", "box", "vase", "tree", "plane", "foliage"};
   return names;
 }
 
@@ -278,6 +304,31 @@ TriangleSoup make_generated(const std::string& name, const nlohmann::json& param
     const glm::vec2 size = in.vec2("size", glm::vec2(2.0f));
     in.require(size.x > 0.0f && size.y > 0.0f, "size", "must be positive");
     return make_plane(size, count(in, "subdivisions", 1, 1));
+  }
+  if (name == "foliage") {
+    const JsonObjectReader in(object, where, path, {"size", "leaves", "density", "leaf_size", "seed"});
+    FoliageParams p;
+    p.size = in.vec3("size", p.size);
+    in.require(p.size.x > 0.0f && p.size.y > 0.0f && p.size.z > 0.0f, "size", "must be positive");
+    p.leaf_size = positive(in, "leaf_size", p.leaf_size);
+    const float smallest = std::min({p.size.x, p.size.y, p.size.z});
+    in.require(2.0f * kFoliageLeafReach * p.leaf_size < smallest, "leaf_size",
+               fmt::format("must be below {:.4g} so a leaf fits the box's smallest side {} (leaves reach {} "
+                           "leaf sizes across)",
+                           smallest / (2.0f * kFoliageLeafReach), smallest, 2.0f * kFoliageLeafReach));
+    if (in.has("leaves")) in.forbid("density", "cannot be given with 'leaves' (give one of them)");
+    if (in.has("density")) {
+      const double volume = double(p.size.x) * p.size.y * p.size.z;
+      const float density = in.number("density");
+      in.require(density >= 0.0f && double(density) * volume <= double(kMaxFoliageLeaves), "density",
+                 fmt::format("must be >= 0 and give at most {} leaves in the box's volume {:.4g}",
+                             kMaxFoliageLeaves, volume));
+      p.leaves = uint32_t(std::llround(double(density) * volume));
+    } else {
+      p.leaves = uint32_t(in.integer("leaves", p.leaves, 0, kMaxFoliageLeaves));
+    }
+    p.seed = uint32_t(in.integer("seed", p.seed, 0, 0xffffffffll));
+    return make_foliage(p);
   }
   std::string known;
   for (const std::string& n : generator_names()) known += (known.empty() ? "" : ", ") + n;

@@ -52,6 +52,22 @@ inline constexpr uint32_t kTreeLeafMaterial = 1;
 inline constexpr float kTreeLeavesPerDensity = 300.0f;
 TriangleSoup make_tree(float density = 1.0f, uint32_t seed = 1);
 
+// A block of foliage for shadows among casters: `leaves` sheet leaves (material kFoliageLeafMaterial), each
+// an open quad like the tree's (2 triangles, 4 vertices of its own) with a random normal and spin, a length
+// in [0.75, 1.25) * leaf_size and half that width, centred uniformly in the box of extent `size` centred at
+// the origin, inset by a leaf's largest half-diagonal (kFoliageLeafReach * leaf_size) so every vertex lies
+// inside the box. 2 * leaves triangles. Same parameters, same block. Needs leaf_size > 0 and every side of
+// `size` longer than 2 * kFoliageLeafReach * leaf_size.
+inline constexpr uint32_t kFoliageLeafMaterial = 0;
+inline constexpr float kFoliageLeafReach = 0.69877124f;  // half the diagonal of a 1.25 x 0.625 leaf
+struct FoliageParams {
+  glm::vec3 size{2.0f, 1.0f, 2.0f};
+  uint32_t leaves = 2000;
+  float leaf_size = 0.1f;  // mean leaf length, world units
+  uint32_t seed = 1;
+};
+TriangleSoup make_foliage(const FoliageParams& params = {});
+
 // Open square grid in the XZ plane at y = 0, centred at the origin, `size` = (extent along x, along z),
 // subdivisions x subdivisions cells, 2 triangles each, normals +Y. Needs size > 0, subdivisions >= 1.
 TriangleSoup make_plane(glm::vec2 size = glm::vec2(2.0f), int subdivisions = 1);
@@ -59,10 +75,11 @@ TriangleSoup make_plane(glm::vec2 size = glm::vec2(2.0f), int subdivisions = 1);
 // Names make_generated knows, in the order error messages list them.
 const std::vector<std::string>& generator_names();
 
-// Runs generator `name` ("torus", "sphere", "box", "vase", "tree", "plane") with parameters from the JSON
-// object `params` (null or {} for all defaults). Keys are the parameter names above: torus {major, minor,
-// rings, sides}, sphere {radius, stacks, slices}, box {lo, hi}, vase {height, profile, thickness, segments,
-// rows}, tree {density, seed}, plane {size, subdivisions}. Throws voxr::Error starting with `where` (the
+// Runs generator `name` ("torus", "sphere", "box", "vase", "tree", "plane", "foliage") with parameters from
+// the JSON object `params` (null or {} for all defaults). Keys are the parameter names above: torus {major,
+// minor, rings, sides}, sphere {radius, stacks, slices}, box {lo, hi}, vase {height, profile, thickness,
+// segments, rows}, tree {density, seed}, plane {size, subdivisions}, foliage {size, leaves or density (leaves
+// per unit volume; not both), leaf_size, seed}. Throws voxr::Error starting with `where` (the
 // scene file, say) for an unknown name, an unknown key, a wrong type or an out-of-range value, naming the
 // key as `path`.key.
 TriangleSoup make_generated(const std::string& name, const nlohmann::json& params, const std::string& where,

@@ -23,7 +23,7 @@
 //        "transform": {"scale": 1.0,                  a number or [x, y, z], no component 0
 //                      "rotate_deg": [0, 0, 0],       about X, then Y, then Z, in degrees
 //                      "translate": [0, 0, 0]}},      applied in this order: scale, rotate, translate
-//       {"generator": "torus",                        torus | sphere | box | vase | tree | plane
+//       {"generator": "torus",                        torus | sphere | box | vase | tree | plane | foliage
 //        "params": {"major": 1, "minor": 0.4},        generator parameters (generators.h)
 //        "material": "floor"}
 //     ],
