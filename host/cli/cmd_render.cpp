@@ -197,7 +197,7 @@ int run_render(const RenderArgs& args) {
     const ImageRgba exact_image = shade_samples(samples, exact, render_mats, light, width, height);
     const double p = psnr(image, exact_image);
     const std::filesystem::path error_path = beside(args.output, "error");
-    write_image(transmittance_error_image(transmittance, exact, mask, width, height), error_path.string());
+    write_image(error_image(transmittance, exact, width, height, mask, 1.0), error_path.string());
     report["compare_reference"] = {{"transmittance_rmse", e.rmse},
                                    {"transmittance_max", e.max_abs},
                                    {"share_over_0.05", e.share_over_threshold},

@@ -182,8 +182,8 @@ TriangleSoup make_vase(const VaseParams& p) {
   return soup;
 }
 
-TriangleSoup make_tree(float density, uint32_t seed) {
-  VOXR_CHECK(density >= 0.0f);
+TriangleSoup make_tree(float density, uint32_t seed, float leaf_scale) {
+  VOXR_CHECK(density >= 0.0f && leaf_scale > 0.0f);
   TriangleSoup soup;
   // Trunk: a tapered closed cylinder, 12 sides, 4 rows.
   std::vector<glm::vec2> trunk{{0.0f, 0.0f}};
@@ -204,7 +204,8 @@ TriangleSoup make_tree(float density, uint32_t seed) {
     do {  // uniform in the unit ball
       q = glm::vec3(uniform(rng), uniform(rng), uniform(rng)) * 2.0f - 1.0f;
     } while (glm::dot(q, q) > 1.0f);
-    add_random_leaf(soup, rng, crown_center + q * crown_radii, 0.08f, 0.05f, kTreeLeafMaterial);
+    add_random_leaf(soup, rng, crown_center + q * crown_radii, 0.08f * leaf_scale, 0.05f * leaf_scale,
+                    kTreeLeafMaterial);
   }
   return soup;
 }
@@ -294,10 +295,12 @@ TriangleSoup make_generated(const std::string& name, const nlohmann::json& param
     return make_vase(p);
   }
   if (name == "tree") {
-    const JsonObjectReader in(object, where, path, {"density", "seed"});
+    const JsonObjectReader in(object, where, path, {"density", "seed", "leaf_scale"});
     const float density = in.number("density", 1.0f);
     in.require(density >= 0.0f && density <= 1000.0f, "density", "must be in [0, 1000]");
-    return make_tree(density, uint32_t(in.integer("seed", 1, 0, 0xffffffffll)));
+    const float leaf_scale = in.number("leaf_scale", 1.0f);
+    in.require(leaf_scale > 0.0f && leaf_scale <= 10.0f, "leaf_scale", "must be in (0, 10]");
+    return make_tree(density, uint32_t(in.integer("seed", 1, 0, 0xffffffffll)), leaf_scale);
   }
   if (name == "plane") {
     const JsonObjectReader in(object, where, path, {"size", "subdivisions"});

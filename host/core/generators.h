@@ -46,11 +46,13 @@ TriangleSoup make_vase(const VaseParams& params = {});
 // A small tree: a closed, tapered trunk (material 0) from y = 0 to y = 1, and leaves (material 1) in an
 // ellipsoidal crown around (0, 1.25, 0). Each leaf is an open quad sheet (2 triangles, 4 vertices of its
 // own) of random position, orientation and size; there are round(kTreeLeavesPerDensity * density) of them.
-// Same density and seed, same tree. Needs density >= 0.
+// Leaves are 0.08..0.13 x leaf_scale long and half that wide: a dense crown of small leaves (the shadow
+// scenes: density 108, leaf_scale 0.2) lets light through as a real one does. Same parameters, same tree.
+// Needs density >= 0 and leaf_scale > 0.
 inline constexpr uint32_t kTreeTrunkMaterial = 0;
 inline constexpr uint32_t kTreeLeafMaterial = 1;
 inline constexpr float kTreeLeavesPerDensity = 300.0f;
-TriangleSoup make_tree(float density = 1.0f, uint32_t seed = 1);
+TriangleSoup make_tree(float density = 1.0f, uint32_t seed = 1, float leaf_scale = 1.0f);
 
 // A block of foliage for shadows among casters: `leaves` sheet leaves (material kFoliageLeafMaterial), each
 // an open quad like the tree's (2 triangles, 4 vertices of its own) with a random normal and spin, a length
@@ -78,7 +80,7 @@ const std::vector<std::string>& generator_names();
 // Runs generator `name` ("torus", "sphere", "box", "vase", "tree", "plane", "foliage") with parameters from
 // the JSON object `params` (null or {} for all defaults). Keys are the parameter names above: torus {major,
 // minor, rings, sides}, sphere {radius, stacks, slices}, box {lo, hi}, vase {height, profile, thickness,
-// segments, rows}, tree {density, seed}, plane {size, subdivisions}, foliage {size, leaves or density (leaves
+// segments, rows}, tree {density, seed, leaf_scale}, plane {size, subdivisions}, foliage {size, leaves or density (leaves
 // per unit volume; not both), leaf_size, seed}. Throws voxr::Error starting with `where` (the
 // scene file, say) for an unknown name, an unknown key, a wrong type or an out-of-range value, naming the
 // key as `path`.key.
