@@ -22,13 +22,36 @@
 #define RASTER_S ((long)VOXR_SUBPIXEL)
 #define RASTER_TILE VOXR_RASTER_TILE
 
+/* floor(a / VOXR_SUBPIXEL) with shifts of non-negative values only. */
+inline long raster_floor_pixel(long a) {
+  return a >= 0 ? a >> VOXR_SUBPIXEL_BITS : ~((~a) >> VOXR_SUBPIXEL_BITS);
+}
+
 /* Edge functions E_i(P) = dx_i (P.y - y_i) - dy_i (P.x - x_i) of edge i (vertex i to i+1) minus its tie bias,
- * at the centre of pixel (x0, y0), with their steps per column and per row. The polygon is positively
- * oriented (rows down), so a centre is covered when every biased E_i >= 0. N edges are evaluated; edges at or
- * beyond vertex_count always pass. |coordinates| < 2^29 and |centres| < 2^22, so every product is < 2^61. */
+ * stepped per column and per row over the pixels of the tile at (x0, y0) (cols x rows of them in the image)
+ * whose centres lie in the polygon's bounding box. The polygon is positively oriented (rows down), so a
+ * centre is covered when every biased E_i >= 0. N edges are evaluated; edges at or beyond vertex_count
+ * always pass. |coordinates| < 2^29 and |centres| < 2^22, so every product is < 2^61. */
 #define RASTER_MASK_BODY(N)                                                                             \
+  long lo_x = prim->x[0], hi_x = lo_x, lo_y = prim->y[0], hi_y = lo_y;                                  \
+  for (int i = 1; i < N; ++i) {                                                                         \
+    if (i < n) {                                                                                        \
+      lo_x = min(lo_x, (long)prim->x[i]);                                                               \
+      hi_x = max(hi_x, (long)prim->x[i]);                                                               \
+      lo_y = min(lo_y, (long)prim->y[i]);                                                               \
+      hi_y = max(hi_y, (long)prim->y[i]);                                                               \
+    }                                                                                                   \
+  }                                                                                                     \
+  /* Columns and rows of the tile whose centres (x + 1/2) S lie in [lo, hi]. */                         \
+  const int c_first = (int)max(raster_floor_pixel(lo_x - RASTER_S / 2 + RASTER_S - 1) - x0, 0L);        \
+  const int c_last = (int)min(raster_floor_pixel(hi_x - RASTER_S / 2) - x0, (long)cols - 1);            \
+  const int r_first = (int)max(raster_floor_pixel(lo_y - RASTER_S / 2 + RASTER_S - 1) - y0, 0L);        \
+  const int r_last = (int)min(raster_floor_pixel(hi_y - RASTER_S / 2) - y0, (long)rows - 1);            \
+  ulong mask = 0;                                                                                       \
+  if (c_first > c_last || r_first > r_last) return mask;                                                \
   long e[N], step_x[N], step_y[N];                                                                      \
-  const long cx = (long)x0 * RASTER_S + RASTER_S / 2, cy = (long)y0 * RASTER_S + RASTER_S / 2;          \
+  const long cx = (long)(x0 + c_first) * RASTER_S + RASTER_S / 2;                                       \
+  const long cy = (long)(y0 + r_first) * RASTER_S + RASTER_S / 2;                                       \
   for (int i = 0; i < N; ++i) {                                                                         \
     if (i < n) {                                                                                        \
       const int j = i + 1 < n ? i + 1 : 0;                                                              \
@@ -45,11 +68,10 @@
       step_y[i] = 0;                                                                                    \
     }                                                                                                   \
   }                                                                                                     \
-  ulong mask = 0;                                                                                       \
-  for (uint r = 0; r < rows; ++r) {                                                                     \
+  for (int r = r_first; r <= r_last; ++r) {                                                             \
     long f[N];                                                                                          \
     for (int i = 0; i < N; ++i) f[i] = e[i];                                                            \
-    for (uint c = 0; c < cols; ++c) {                                                                   \
+    for (int c = c_first; c <= c_last; ++c) {                                                           \
       int inside = 1;                                                                                   \
       for (int i = 0; i < N; ++i) {                                                                     \
         inside &= f[i] >= 0;                                                                            \

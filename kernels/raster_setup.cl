@@ -67,11 +67,6 @@ inline int raster_finite4(float4 v) {
   return isfinite(v.x) && isfinite(v.y) && isfinite(v.z) && isfinite(v.w);
 }
 
-/* floor(a / VOXR_SUBPIXEL) with shifts of non-negative values only. */
-inline long raster_floor_pixel(long a) {
-  return a >= 0 ? a >> VOXR_SUBPIXEL_BITS : ~((~a) >> VOXR_SUBPIXEL_BITS);
-}
-
 inline float4 raster_to_clip(const RasterParams* p, float4 q) {
   const float* m = p->view_projection; /* column-major: m[4 * column + row] */
   float c[4];
