@@ -29,9 +29,14 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_depth(
   ulong mask = raster_tile_mask(prim, rec.tile, width, height);
   uint x, y;
   while (raster_next_pixel(&mask, rec.tile, &x, &y)) {
-    const ulong word = raster_visibility_word(raster_depth_at(prim, x, y, width, height), rec.triangle);
+    const float depth = raster_depth_at(prim, x, y, width, height);
+    const ulong word = raster_visibility_word(depth, rec.triangle);
     __global ulong* slot = visibility + (ulong)y * width + x;
-    /* Words only decrease, so a plain read that is already lower makes the atomic unnecessary. */
-    if (*slot > word) atom_min(slot, word);
+#ifdef __ENDIAN_LITTLE__
+    /* Words only decrease, so a stored depth already below this fragment's makes the atomic unnecessary.
+     * The depth half alone is read: a 32-bit load is never torn, a plain 64-bit one might be. */
+    if (((__global const uint*)slot)[1] < as_uint(depth)) continue;
+#endif
+    atom_min(slot, word);
   }
 }

@@ -27,7 +27,8 @@ namespace voxr {
 struct RasterTarget {
   // Anchor-relative world -> clip (column-major, as CameraFrame::view_projection): the image spans x/w and
   // y/w in [-1, 1] (y/w = +1 at row 0), depths z/w in [0, 1]. Geometry with z < 0 is clipped away (the near
-  // plane), depths beyond 1 are clamped to 1.
+  // plane); a triangle wholly beyond z/w = 1 is dropped, one reaching beyond it is drawn with its depths
+  // clamped to 1.
   glm::mat4 view_projection{1.0f};
   uint32_t width = 0, height = 0;  // pixels, 1 .. VOXR_RASTER_MAX_SIDE each
   uint32_t kind_mask = 7;          // bit 1 << RenderMaterial.kind of the triangles drawn
