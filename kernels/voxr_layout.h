@@ -116,8 +116,8 @@ typedef struct VoxGridView {
 
 /* A material on the device (host/render/render_scene.h fills it from core/material.h). */
 typedef struct RenderMaterial {
-  float color[3]; /* diffuse reflectance (opaque, sheet) */
-  uint kind;      /* VOXR_MATERIAL_* */
+  float color[3];         /* diffuse reflectance (opaque, sheet) */
+  uint kind;              /* VOXR_MATERIAL_* */
   float transmittance[3]; /* per crossing (sheet) */
   float ior;              /* dielectric */
   float absorption[3];    /* sigma_a per world unit (dielectric) */
@@ -148,7 +148,7 @@ typedef struct SurfaceSample {
   float normal[3]; /* shading normal: interpolated vertex normal */
   uint material;
   float geometric_normal[3];
-  float distance; /* from the eye along the pixel's ray */
+  float distance;       /* from the eye along the pixel's ray */
   float barycentric[2]; /* of vertices 1 and 2 */
   float pad[2];
 } SurfaceSample;
@@ -167,31 +167,117 @@ typedef struct ShadowFrame {
   float voxel_size; /* orthographic: the voxel edge in world units */
 } ShadowFrame;
 
+/* ---- The kernel rasterizer (host/render/visibility_rasterizer.h, kernels/raster_*.cl) ---- */
+
+/* Screen positions are snapped to 1/VOXR_SUBPIXEL pixel; coverage is then decided by exact 64-bit integer
+ * edge functions (raster_coverage.h), identical on every device and in the CPU reference. */
+#define VOXR_SUBPIXEL_BITS 8
+#define VOXR_SUBPIXEL (1 << VOXR_SUBPIXEL_BITS)
+/* One raster work item covers a tile of VOXR_RASTER_TILE x VOXR_RASTER_TILE pixels (a 64-bit mask). */
+#define VOXR_RASTER_TILE 8
+/* A triangle clipped by the near plane and the four guard-band planes has at most 3 + 5 vertices. */
+#define VOXR_RASTER_MAX_VERTICES 8
+/* Largest image side, in pixels (tile indices fit 16 bits). */
+#define VOXR_RASTER_MAX_SIDE 16384
+/* Guard band: triangles are clipped so every screen position lies within +-VOXR_RASTER_GUARD pixels, which
+ * keeps snapped coordinates below 2^29 and the edge functions' products below 2^61. */
+#define VOXR_RASTER_GUARD (1 << 21)
+
+/* What raster_setup.cl needs to bin a mesh for one view. */
+typedef struct RasterParams {
+  float view_projection[16]; /* column-major (glm): anchor-relative world -> clip; z/w in [0, 1] is drawn */
+  uint width;                /* image size in pixels; row 0 is the top (y_ndc = +1) */
+  uint height;
+  uint kind_mask;      /* bit 1 << RenderMaterial.kind of the triangles drawn */
+  uint triangle_count; /* of the mesh */
+  uint material_count; /* triangles whose material id is not below this are not drawn */
+  float guard[2];      /* guard-band planes |x| <= guard[0] w, |y| <= guard[1] w */
+  uint pad;
+} RasterParams;
+
+/* A primitive's flags: the triangle appears clockwise in the image as the viewer sees it (rows up), i.e. it
+ * shows its back when the mesh winds counter-clockwise seen from outside. */
+#define VOXR_PRIM_BACK 1u
+
+/* One triangle after setup (raster_setup.cl), clipped and snapped: a convex polygon of vertex_count vertices
+ * (x[i], y[i]) in 1/VOXR_SUBPIXEL pixel, image rows down, ordered so its signed area sum(x_i y_{i+1} -
+ * x_{i+1} y_i) is positive; vertex_count 0 when it is not drawn (material kind, culled, clipped away, no
+ * area, no pixel centre in its box). Its pixels' z_ndc is depth[0] (px - width/2) + depth[1] (py - height/2)
+ * + depth[2] at pixel centre (px, py) in pixels. Its records (raster_expand.cl) are the tiles_x x tiles_y
+ * tiles from tile (first_tile & 0xffff, first_tile >> 16): tile_counts[t] = tiles_x * tiles_y. */
+typedef struct RasterPrim {
+  uint vertex_count;
+  uint flags; /* VOXR_PRIM_* */
+  uint first_tile;
+  uint tiles_x;
+  float depth[3];
+  uint pad;
+  int x[VOXR_RASTER_MAX_VERTICES];
+  int y[VOXR_RASTER_MAX_VERTICES];
+} RasterPrim;
+
+/* One raster work item: a triangle and one tile of its bounding box (column in the low 16 bits, row in the
+ * high 16). */
+typedef struct RasterRecord {
+  uint triangle;
+  uint tile;
+} RasterRecord;
+
+/* The visibility buffer holds one 64-bit word per pixel: (float bits of z_ndc in [0, 1]) << 32 | triangle,
+ * so a 64-bit atomic min keeps the nearest triangle and, at equal depth, the lower id. A pixel no triangle
+ * covers keeps the cleared word, all bits set (its low half is VOXR_NO_TRIANGLE). */
+
+/* The camera as raster_resolve.cl reads it (host/render/camera_frame.h CameraFrame): the ray through pixel
+ * point (px, py) is normalize(forward + sx right + sy up), sx = (2 px / width - 1) tan_half_fov_y aspect,
+ * sy = (1 - 2 py / height) tan_half_fov_y. Anchor-relative positions. */
+typedef struct RenderCamera {
+  float eye[3];
+  uint width;
+  float forward[3];
+  uint height;
+  float right[3];
+  float tan_half_fov_y;
+  float up[3];
+  float aspect;
+} RenderCamera;
+
 /* Every size and offset the host and the device must agree on, in one list that both expand: SIZE(T) for a
  * struct, OFFSET(T, field) for a member. */
-#define VOXR_LAYOUT_ENTRIES(SIZE, OFFSET)                                                              \
-  SIZE(VoxGridParams)                                                                                  \
-  OFFSET(VoxGridParams, world_to_grid) OFFSET(VoxGridParams, dims) OFFSET(VoxGridParams, rows_per_copy) \
-  OFFSET(VoxGridParams, triangle_count) OFFSET(VoxGridParams, margin) OFFSET(VoxGridParams, channels)   \
-  SIZE(VoxCopy) OFFSET(VoxCopy, triangle) OFFSET(VoxCopy, slice_block)                                  \
-  SIZE(VoxCopyInfo) OFFSET(VoxCopyInfo, first_slab) OFFSET(VoxCopyInfo, row_blocks)                     \
-  SIZE(VoxSnappedTriangle) OFFSET(VoxSnappedTriangle, x) OFFSET(VoxSnappedTriangle, y)                  \
-  OFFSET(VoxSnappedTriangle, z) OFFSET(VoxSnappedTriangle, material)                                    \
-  SIZE(SlicemapTiles) OFFSET(SlicemapTiles, rows) OFFSET(SlicemapTiles, cols)                           \
-  SIZE(SlicemapRecord) OFFSET(SlicemapRecord, triangle) OFFSET(SlicemapRecord, tile)                    \
-  SIZE(VoxSolidLayout) OFFSET(VoxSolidLayout, dims) OFFSET(VoxSolidLayout, words_x)                     \
-  OFFSET(VoxSolidLayout, slice_words)                                                                   \
-  SIZE(VoxGridView) OFFSET(VoxGridView, world_to_grid) OFFSET(VoxGridView, dims)                        \
-  OFFSET(VoxGridView, channels) OFFSET(VoxGridView, voxels_set) OFFSET(VoxGridView, has_rank_index)   \
-  SIZE(RenderMaterial) OFFSET(RenderMaterial, color) OFFSET(RenderMaterial, kind)                       \
-  OFFSET(RenderMaterial, transmittance) OFFSET(RenderMaterial, ior) OFFSET(RenderMaterial, absorption)  \
-  SIZE(RenderLight) OFFSET(RenderLight, position) OFFSET(RenderLight, directional)                      \
-  OFFSET(RenderLight, direction) OFFSET(RenderLight, intensity) OFFSET(RenderLight, ambient)            \
-  SIZE(SurfaceSample) OFFSET(SurfaceSample, position) OFFSET(SurfaceSample, triangle)                   \
-  OFFSET(SurfaceSample, normal) OFFSET(SurfaceSample, material) OFFSET(SurfaceSample, geometric_normal) \
-  OFFSET(SurfaceSample, distance) OFFSET(SurfaceSample, barycentric)                                    \
-  SIZE(ShadowFrame) OFFSET(ShadowFrame, to_light) OFFSET(ShadowFrame, dims) OFFSET(ShadowFrame, projective) \
-  OFFSET(ShadowFrame, u0) OFFSET(ShadowFrame, inv_dv) OFFSET(ShadowFrame, depth_scale)                  \
-  OFFSET(ShadowFrame, voxel_size)
+/* clang-format off */
+#define VOXR_LAYOUT_ENTRIES(SIZE, OFFSET)                                                                \
+  SIZE(VoxGridParams)                                                                                    \
+  OFFSET(VoxGridParams, world_to_grid) OFFSET(VoxGridParams, dims) OFFSET(VoxGridParams, rows_per_copy)   \
+  OFFSET(VoxGridParams, triangle_count) OFFSET(VoxGridParams, margin) OFFSET(VoxGridParams, channels)     \
+  SIZE(VoxCopy) OFFSET(VoxCopy, triangle) OFFSET(VoxCopy, slice_block)                                    \
+  SIZE(VoxCopyInfo) OFFSET(VoxCopyInfo, first_slab) OFFSET(VoxCopyInfo, row_blocks)                       \
+  SIZE(VoxSnappedTriangle) OFFSET(VoxSnappedTriangle, x) OFFSET(VoxSnappedTriangle, y)                    \
+  OFFSET(VoxSnappedTriangle, z) OFFSET(VoxSnappedTriangle, material)                                      \
+  SIZE(SlicemapTiles) OFFSET(SlicemapTiles, rows) OFFSET(SlicemapTiles, cols)                             \
+  SIZE(SlicemapRecord) OFFSET(SlicemapRecord, triangle) OFFSET(SlicemapRecord, tile)                      \
+  SIZE(VoxSolidLayout) OFFSET(VoxSolidLayout, dims) OFFSET(VoxSolidLayout, words_x)                       \
+  OFFSET(VoxSolidLayout, slice_words)                                                                     \
+  SIZE(VoxGridView) OFFSET(VoxGridView, world_to_grid) OFFSET(VoxGridView, dims)                          \
+  OFFSET(VoxGridView, channels) OFFSET(VoxGridView, voxels_set) OFFSET(VoxGridView, has_rank_index)       \
+  SIZE(RenderMaterial) OFFSET(RenderMaterial, color) OFFSET(RenderMaterial, kind)                         \
+  OFFSET(RenderMaterial, transmittance) OFFSET(RenderMaterial, ior) OFFSET(RenderMaterial, absorption)    \
+  SIZE(RenderLight) OFFSET(RenderLight, position) OFFSET(RenderLight, directional)                        \
+  OFFSET(RenderLight, direction) OFFSET(RenderLight, intensity) OFFSET(RenderLight, ambient)              \
+  SIZE(SurfaceSample) OFFSET(SurfaceSample, position) OFFSET(SurfaceSample, triangle)                     \
+  OFFSET(SurfaceSample, normal) OFFSET(SurfaceSample, material) OFFSET(SurfaceSample, geometric_normal)   \
+  OFFSET(SurfaceSample, distance) OFFSET(SurfaceSample, barycentric)                                      \
+  SIZE(ShadowFrame) OFFSET(ShadowFrame, to_light) OFFSET(ShadowFrame, dims)                               \
+  OFFSET(ShadowFrame, projective) OFFSET(ShadowFrame, u0) OFFSET(ShadowFrame, inv_dv)                     \
+  OFFSET(ShadowFrame, depth_scale) OFFSET(ShadowFrame, voxel_size)                                        \
+  SIZE(RasterParams) OFFSET(RasterParams, view_projection) OFFSET(RasterParams, width)                    \
+  OFFSET(RasterParams, height) OFFSET(RasterParams, kind_mask) OFFSET(RasterParams, triangle_count)       \
+  OFFSET(RasterParams, material_count) OFFSET(RasterParams, guard)                                        \
+  SIZE(RasterPrim) OFFSET(RasterPrim, vertex_count) OFFSET(RasterPrim, flags)                             \
+  OFFSET(RasterPrim, first_tile) OFFSET(RasterPrim, tiles_x) OFFSET(RasterPrim, depth)                    \
+  OFFSET(RasterPrim, x) OFFSET(RasterPrim, y)                                                             \
+  SIZE(RasterRecord) OFFSET(RasterRecord, triangle) OFFSET(RasterRecord, tile)                            \
+  SIZE(RenderCamera) OFFSET(RenderCamera, eye) OFFSET(RenderCamera, width) OFFSET(RenderCamera, forward)   \
+  OFFSET(RenderCamera, height) OFFSET(RenderCamera, right) OFFSET(RenderCamera, tan_half_fov_y)           \
+  OFFSET(RenderCamera, up) OFFSET(RenderCamera, aspect)
+/* clang-format on */
 
 #endif

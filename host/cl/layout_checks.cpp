@@ -20,6 +20,10 @@ static_assert(sizeof(RenderMaterial) == 48);
 static_assert(sizeof(RenderLight) == 64);
 static_assert(sizeof(SurfaceSample) == 64);
 static_assert(sizeof(ShadowFrame) == 96);
+static_assert(sizeof(RasterParams) == 96);
+static_assert(sizeof(RasterPrim) == 96);
+static_assert(sizeof(RasterRecord) == 8);
+static_assert(sizeof(RenderCamera) == 64);
 static_assert(sizeof(glm::vec4) == sizeof(cl_float4) && sizeof(glm::uvec4) == sizeof(cl_uint4));
 static_assert(sizeof(glm::ivec3) == 12 && sizeof(glm::vec3) == 12, "sparse int3/float3 channels are packed");
 

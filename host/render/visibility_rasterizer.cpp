@@ -1,0 +1,182 @@
+#include "render/visibility_rasterizer.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cstring>
+
+#include "cl/scan.h"
+
+namespace voxr {
+
+namespace {
+
+constexpr size_t kGroup = 256;
+
+Defines raster_defines() {
+  return {{"WG_SIZE", std::to_string(kGroup)}};
+}
+
+}  // namespace
+
+RasterTarget camera_target(const CameraFrame& frame) {
+  RasterTarget target;
+  target.view_projection = frame.view_projection();
+  target.width = frame.width;
+  target.height = frame.height;
+  return target;
+}
+
+RasterParams make_raster_params(const RasterTarget& target, uint32_t triangle_count,
+                                uint32_t material_count) {
+  if (target.width == 0 || target.height == 0 || target.width > VOXR_RASTER_MAX_SIDE ||
+      target.height > VOXR_RASTER_MAX_SIDE)
+    fail("raster image {}x{}: each side must be 1 to {} pixels", target.width, target.height,
+         VOXR_RASTER_MAX_SIDE);
+  RasterParams p{};
+  std::memcpy(p.view_projection, glm::value_ptr(target.view_projection), sizeof(p.view_projection));
+  p.width = target.width;
+  p.height = target.height;
+  p.kind_mask = target.kind_mask;
+  p.triangle_count = triangle_count;
+  p.material_count = material_count;
+  // Screen x = (x/w + 1) width / 2 stays within +-VOXR_RASTER_GUARD pixels when |x/w| <= 2 GUARD / width - 1.
+  p.guard[0] = 2.0f * float(VOXR_RASTER_GUARD) / float(target.width) - 1.0f;
+  p.guard[1] = 2.0f * float(VOXR_RASTER_GUARD) / float(target.height) - 1.0f;
+  return p;
+}
+
+RenderCamera make_render_camera(const CameraFrame& frame) {
+  RenderCamera c{};
+  for (int a = 0; a < 3; ++a) {
+    c.eye[a] = frame.eye[a];
+    c.forward[a] = frame.forward[a];
+    c.right[a] = frame.right[a];
+    c.up[a] = frame.up[a];
+  }
+  c.width = frame.width;
+  c.height = frame.height;
+  c.tan_half_fov_y = frame.tan_half_fov_y;
+  c.aspect = frame.aspect();
+  return c;
+}
+
+VisibilityRasterizer::VisibilityRasterizer(ClRuntime& cl, uint64_t record_budget_bytes)
+    : cl_(cl), record_budget_bytes_(record_budget_bytes) {
+  if (cl_.device().extensions.find("cl_khr_int64_extended_atomics") == std::string::npos)
+    fail("{} lacks cl_khr_int64_extended_atomics, which the visibility buffer's 64-bit atomic min needs",
+         cl_.device().label());
+}
+
+std::vector<ProgramSpec> VisibilityRasterizer::programs() const {
+  std::vector<ProgramSpec> specs = scan_programs();
+  for (const char* file : {"raster_setup.cl", "raster_expand.cl", "raster_depth.cl", "raster_resolve.cl"})
+    specs.push_back({file, raster_defines()});
+  return specs;
+}
+
+void VisibilityRasterizer::bin(const DeviceMesh& mesh, const RasterTarget& target,
+                               const cl::Buffer& materials, uint32_t material_count, RasterBins& bins) {
+  const uint32_t tris = mesh.triangle_count();
+  bins.params_ = make_raster_params(target, tris, material_count);
+  bins.records_ = 0;
+  bins.batch_ = 0;
+  bins.expanded_ = false;
+  cl::Buffer& prims = bins.prims_.ensure(cl_, uint64_t(tris) * sizeof(RasterPrim), "raster primitives");
+  cl::Buffer& counts = bins.counts_.ensure(cl_, uint64_t(tris) * 4, "raster tile counts");
+  cl::Buffer& offsets = bins.offsets_.ensure(cl_, uint64_t(tris) * 8, "raster tile offsets");
+  if (tris == 0) return;
+  cl::Kernel setup = cl_.kernel("raster_setup.cl", "raster_setup", raster_defines());
+  cl_.launch("raster_setup", setup, tris, kGroup, bins.params_, mesh.positions(), mesh.triangles(), materials,
+             prims, counts);
+  bins.records_ = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, tris, "raster_scan");
+  const uint64_t budget = std::max<uint64_t>(1, record_budget_bytes_ / sizeof(RasterRecord));
+  bins.batch_ = std::min({bins.records_, budget, uint64_t(0xffffffffu)});
+}
+
+void VisibilityRasterizer::for_each_batch(RasterBins& bins,
+                                          const std::function<void(const cl::Buffer&, uint32_t)>& consume) {
+  if (bins.records_ == 0) return;
+  const uint64_t batch = bins.batch_;
+  cl::Buffer& records = bins.record_buffer_.ensure(cl_, batch * sizeof(RasterRecord), "raster records");
+  const bool single = bins.batches() == 1;
+  for (uint64_t begin = 0; begin < bins.records_; begin += batch) {
+    const uint32_t count = uint32_t(std::min(batch, bins.records_ - begin));
+    if (!(single && bins.expanded_)) {
+      cl::Kernel expand = cl_.kernel("raster_expand.cl", "raster_expand", raster_defines());
+      cl_.launch("raster_expand", expand, count, kGroup, cl_uint(bins.params_.triangle_count),
+                 bins.offsets_.buffer, bins.prims_.buffer, cl_ulong(begin), cl_uint(count), records);
+      bins.expanded_ = single;
+    }
+    consume(records, count);
+  }
+}
+
+void VisibilityRasterizer::rasterize_depth(RasterBins& bins, GrowingBuffer& visibility) {
+  const uint32_t width = bins.width(), height = bins.height();
+  const uint64_t pixels = uint64_t(width) * height;
+  cl::Buffer& words = visibility.ensure(cl_, pixels * 8, "the visibility buffer");
+  cl::Kernel clear = cl_.kernel("raster_depth.cl", "raster_clear", raster_defines());
+  cl_.launch("raster_clear", clear, pixels, kGroup, words, cl_uint(pixels));
+  cl::Kernel depth = cl_.kernel("raster_depth.cl", "raster_depth", raster_defines());
+  for_each_batch(bins, [&](const cl::Buffer& records, uint32_t count) {
+    cl_.launch("raster_depth", depth, count, kGroup, cl_uint(width), cl_uint(height), bins.prims(), records,
+               cl_uint(count), words);
+  });
+}
+
+void VisibilityRasterizer::rasterize(const DeviceMesh& mesh, const RasterTarget& target,
+                                     const cl::Buffer& materials, uint32_t material_count,
+                                     GrowingBuffer& visibility, RasterStats* stats) {
+  std::map<std::string, Profiler::Stat> before;
+  if (stats) {
+    cl_.finish();
+    before = cl_.profiler().stats();
+  }
+  bin(mesh, target, materials, material_count, bins_);
+  rasterize_depth(bins_, visibility);
+  if (stats) {
+    cl_.finish("rasterizing");
+    const Profiler::Split split = cl_.profiler().since(before);
+    stats->triangles = mesh.triangle_count();
+    stats->records = bins_.record_count();
+    stats->batches = bins_.batches();
+    stats->batch_records = bins_.batch_records();
+    stats->kernels_ms = split.kernels_ms;
+    stats->stage_ms = split.stage_ms;
+  }
+}
+
+void VisibilityRasterizer::count_coverage(RasterBins& bins, GrowingBuffer& counts) {
+  const uint32_t width = bins.width(), height = bins.height();
+  const uint64_t bytes = uint64_t(width) * height * 2 * sizeof(cl_uint);
+  cl::Buffer& out = counts.ensure(cl_, bytes, "coverage counts");
+  cl_.fill_zero(out, bytes, "clear");
+  cl::Kernel count = cl_.kernel("raster_count.cl", "raster_count", raster_defines());
+  for_each_batch(bins, [&](const cl::Buffer& records, uint32_t n) {
+    cl_.launch("raster_count", count, n, kGroup, cl_uint(width), cl_uint(height), bins.prims(), records,
+               cl_uint(n), out);
+  });
+}
+
+void VisibilityRasterizer::resolve(const DeviceMesh& mesh, const cl::Buffer& vertex_normals,
+                                   const CameraFrame& frame, const cl::Buffer& visibility,
+                                   GrowingBuffer& samples) {
+  const uint64_t pixels = uint64_t(frame.width) * frame.height;
+  VOXR_CHECK(frame.width <= VOXR_RASTER_MAX_SIDE && frame.height <= VOXR_RASTER_MAX_SIDE);
+  cl::Buffer& out = samples.ensure(cl_, pixels * sizeof(SurfaceSample), "the surface samples");
+  cl::Kernel resolve = cl_.kernel("raster_resolve.cl", "raster_resolve", raster_defines());
+  cl_.launch("raster_resolve", resolve, pixels, kGroup, make_render_camera(frame), visibility,
+             mesh.positions(), mesh.triangles(), vertex_normals, cl_uint(mesh.triangle_count()), out);
+}
+
+cl::Buffer upload_vertex_normals(ClRuntime& cl, const std::vector<glm::vec3>& normals) {
+  std::vector<glm::vec4> padded(normals.size());
+  for (size_t i = 0; i < normals.size(); ++i) padded[i] = glm::vec4(normals[i], 0.0f);
+  const uint64_t bytes = padded.size() * sizeof(glm::vec4);
+  cl::Buffer buffer = cl.buffer(bytes, "vertex normals", CL_MEM_READ_ONLY);
+  cl.upload(buffer, padded.data(), bytes, "upload vertex normals");  // blocking: `padded` may go
+  return buffer;
+}
+
+}  // namespace voxr

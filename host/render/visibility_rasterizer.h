@@ -1,0 +1,121 @@
+// Camera (and light) visibility by a kernel rasterizer, no graphics API: triangles are binned into 8x8-pixel
+// tiles (kernels/raster_setup.cl counts each triangle's tiles, an exclusive scan places them,
+// raster_expand.cl writes one (triangle, tile) record per raster work item), and a consumer kernel runs once
+// per record over the pixel centres the triangle covers in its tile (kernels/raster_coverage.h). The depth
+// consumer builds the visibility buffer, one 64-bit word per pixel (voxr_layout.h: depth bits << 32 |
+// triangle, 64-bit atomic min); raster_resolve.cl turns it into a SurfaceSample per pixel. Everything stays
+// on the device between binning, rasterizing and resolving; buffers are kept and reused frame to frame.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cl/cl_runtime.h"
+#include "cl/scratch_buffers.h"
+#include "render/camera_frame.h"
+#include "voxelize/device_mesh.h"
+#include "voxr_layout.h"
+
+namespace voxr {
+
+// One view to rasterize: a camera, or a light's orthographic or perspective frame.
+struct RasterTarget {
+  // Anchor-relative world -> clip (column-major, as CameraFrame::view_projection): the image spans x/w and
+  // y/w in [-1, 1] (y/w = +1 at row 0), depths z/w in [0, 1]. Geometry with z < 0 is clipped away (the near
+  // plane); a triangle wholly beyond z/w = 1 is dropped, one reaching beyond it is drawn with its depths
+  // clamped to 1.
+  glm::mat4 view_projection{1.0f};
+  uint32_t width = 0, height = 0;  // pixels, 1 .. VOXR_RASTER_MAX_SIDE each
+  uint32_t kind_mask = 7;          // bit 1 << RenderMaterial.kind of the triangles drawn
+};
+
+// The target of a camera frame: its view_projection and size, every material kind.
+RasterTarget camera_target(const CameraFrame& frame);
+
+// The parameter block raster_setup.cl reads. Throws voxr::Error for an image side of 0 or more than
+// VOXR_RASTER_MAX_SIDE pixels.
+RasterParams make_raster_params(const RasterTarget& target, uint32_t triangle_count, uint32_t material_count);
+
+// The camera block raster_resolve.cl reads.
+RenderCamera make_render_camera(const CameraFrame& frame);
+
+struct RasterStats {
+  uint64_t triangles = 0;      // of the mesh
+  uint64_t records = 0;        // (triangle, tile) records = raster work items, over all batches
+  uint64_t batches = 0;        // expand + raster rounds the record budget asked for
+  uint64_t batch_records = 0;  // records per batch (the last may hold fewer)
+  double kernels_ms = 0.0;     // profiled kernel time of binning and rasterizing
+  std::map<std::string, double> stage_ms;
+};
+
+// A mesh binned for one target, on the device: per triangle its clipped and snapped primitive
+// (voxr_layout.h RasterPrim) and tile count, their exclusive scan, and the records of the current batch.
+// Keep one per target (camera, light) and bin into it every frame: its buffers are reused.
+class RasterBins {
+ public:
+  const RasterParams& params() const { return params_; }
+  uint32_t width() const { return params_.width; }
+  uint32_t height() const { return params_.height; }
+  uint32_t triangle_count() const { return params_.triangle_count; }
+  uint64_t record_count() const { return records_; }  // all batches together
+  uint64_t batch_records() const { return batch_; }   // records per batch
+  uint64_t batches() const { return batch_ == 0 ? 0 : (records_ + batch_ - 1) / batch_; }
+  const cl::Buffer& prims() const { return prims_.buffer; }  // RasterPrim per triangle
+
+ private:
+  friend class VisibilityRasterizer;
+  RasterParams params_{};
+  uint64_t records_ = 0;
+  uint64_t batch_ = 0;
+  bool expanded_ = false;  // a single batch's records are in place (the next consumer skips the expand)
+  GrowingBuffer prims_, counts_, offsets_, record_buffer_;
+};
+
+class VisibilityRasterizer {
+ public:
+  // Records (8 bytes each) of one batch are kept within `record_budget_bytes`. Throws voxr::Error naming the
+  // device when it lacks cl_khr_int64_extended_atomics (the visibility buffer's 64-bit atomic min).
+  explicit VisibilityRasterizer(ClRuntime& cl, uint64_t record_budget_bytes = uint64_t(128) << 20);
+
+  // The programs bin, rasterize and resolve use, to build before timed work.
+  std::vector<ProgramSpec> programs() const;
+
+  // Sets up and bins the triangles of `mesh` whose material (`materials`: material_count RenderMaterial on
+  // the device) has a kind in target.kind_mask; triangles with a material id >= material_count are not drawn.
+  // Waits for the record total (the only readback).
+  void bin(const DeviceMesh& mesh, const RasterTarget& target, const cl::Buffer& materials,
+           uint32_t material_count, RasterBins& bins);
+  // Calls `consume(records, count)` once per batch of expanded records (RasterRecord, count <= 2^32-1): the
+  // way a kernel of its own (with raster_coverage.h) runs over the binned pixels.
+  void for_each_batch(RasterBins& bins, const std::function<void(const cl::Buffer&, uint32_t)>& consume);
+
+  // The visibility buffer of `bins`: width * height 64-bit words, row 0 at the top (voxr_layout.h).
+  void rasterize_depth(RasterBins& bins, GrowingBuffer& visibility);
+  // bin() and rasterize_depth() with bins of its own.
+  void rasterize(const DeviceMesh& mesh, const RasterTarget& target, const cl::Buffer& materials,
+                 uint32_t material_count, GrowingBuffer& visibility, RasterStats* stats = nullptr);
+  // Coverage counts (checks of the tie rule): 2 * width * height uint, per pixel front then back primitives
+  // (VOXR_PRIM_BACK) that cover its centre.
+  void count_coverage(RasterBins& bins, GrowingBuffer& counts);
+
+  // One SurfaceSample per pixel of `frame` (width * height, row 0 at the top) from the visibility buffer that
+  // rasterize() made for camera_target(frame) and `mesh`; `vertex_normals` holds one float4 (xyz unit) per
+  // vertex of the mesh (upload_vertex_normals).
+  void resolve(const DeviceMesh& mesh, const cl::Buffer& vertex_normals, const CameraFrame& frame,
+               const cl::Buffer& visibility, GrowingBuffer& samples);
+
+ private:
+  ClRuntime& cl_;
+  uint64_t record_budget_bytes_;
+  RasterBins bins_;  // rasterize()'s
+};
+
+// Unit vertex normals (render/vertex_normals.h) as float4 for resolve().
+cl::Buffer upload_vertex_normals(ClRuntime& cl, const std::vector<glm::vec3>& normals);
+
+}  // namespace voxr
