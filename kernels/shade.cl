@@ -1,7 +1,7 @@
 /* shade.cl — one pixel's colour from what the camera sees there (SurfaceSample) and the transmittance the
  * shadow method found towards the light, by the one shading model (shading.h). */
-#include "voxr_layout.h"
 #include "shading.h"
+#include "voxr_layout.h"
 
 #ifndef SHADE_GROUP
 #define SHADE_GROUP 64
@@ -9,7 +9,8 @@
 
 __kernel __attribute__((reqd_work_group_size(SHADE_GROUP, 1, 1))) void shade(
     __global const SurfaceSample* samples, __global const float4* transmittance, uint count,
-    __global const RenderMaterial* materials, uint material_count, RenderLight light, __global float4* image) {
+    __global const RenderMaterial* materials, uint material_count, RenderLight light,
+    __global float4* image) {
   const uint id = get_global_id(0);
   if (id >= count) return;
   const SurfaceSample s = samples[id];

@@ -1,8 +1,8 @@
 /* shadow_filter.cl — the light-space shadow-map baselines (host/render/light_space_maps.h).
  *   shadow_filter_accumulate: per covered texel of a transparent caster (a raster record,
  *     raster_coverage.h), add its optical depth in fixed point with integer atomics (order-independent):
- *     sheet -ln(t) per crossing; dielectric -sigma_a d on faces towards the light and +sigma_a d on faces away
- *     (d: distance from the light along the texel's ray), which sums to sigma_a x thickness.
+ *     sheet -ln(t) per crossing; dielectric -sigma_a d on faces towards the light and +sigma_a d on faces
+ * away (d: distance from the light along the texel's ray), which sums to sigma_a x thickness.
  *   shadow_map_lookup: receivers against the depth map (visibility words, opaque casters or all casters)
  *     with 2x2 percentage-closer filtering; the filter method multiplies by exp(-optical depth). */
 #include "raster_coverage.h"
@@ -27,9 +27,9 @@ inline float light_distance(const ShadowFrame* f, uint x, uint y, float z_ndc) {
 }
 
 __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_filter_accumulate(
-    ShadowFrame frame, __global const RasterPrim* prims, __global const RasterRecord* records, uint record_count,
-    __global const uint4* triangles, __global const RenderMaterial* materials, uint material_count,
-    __global int* tau) {
+    ShadowFrame frame, __global const RasterPrim* prims, __global const RasterRecord* records,
+    uint record_count, __global const uint4* triangles, __global const RenderMaterial* materials,
+    uint material_count, __global int* tau) {
   const uint gid = get_global_id(0);
   if (gid >= record_count) return;
   const RasterRecord rec = records[gid];
@@ -85,7 +85,8 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_m
         const int i = clamp((int)fx + di, 0, w - 1), j = clamp((int)fy + dj, 0, h - 1);
         const ulong texel = (ulong)(h - 1 - j) * (ulong)w + (ulong)i;
         const ulong word = depth[texel];
-        const float occluder = (uint)(word & 0xffffffffu) == VOXR_NO_TRIANGLE ? 2.0f : as_float((uint)(word >> 32));
+        const float occluder =
+            (uint)(word & 0xffffffffu) == VOXR_NO_TRIANGLE ? 2.0f : as_float((uint)(word >> 32));
         float3 t = receiver <= occluder ? (float3)(1.0f) : (float3)(0.0f);
         if (filter) {
           const int3 q = vload3(texel, tau);

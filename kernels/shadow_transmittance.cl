@@ -31,40 +31,45 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_t
   __global uint* out = volume + (ulong)column * dz;
   float3 tau = (float3)(0.0f);
   float3 sigma = (float3)(0.0f); /* absorption of the dielectric the column is inside, 0 outside */
-  int inside = 0, blocked = 0;
-  for (uint k = 0; k < dz; ++k) {
-    const ulong v = gv_linear(&g, (int)i, (int)j, (int)k);
-    if (gv_occupied(&g, v) && !blocked) {
+  int inside = 0;
+  uint packed = sf_pack((float3)(1.0f)); /* exp(-tau), packed: recomputed only where tau changes */
+  const ulong slab_voxels = (ulong)dx * dy;
+  ulong v = gv_linear(&g, (int)i, (int)j, 0);
+  uint k = 0;
+  for (; k < dz; ++k, v += slab_voxels) {
+    int changed = inside;
+    if (inside) tau += sigma * sf_slab_length(&frame, i, j, k);
+    if (gv_occupied(&g, v)) {
+      changed = 1;
       if (method == SHADOW_UNIFORM) {
         tau += (float3)(uniform_r, uniform_g, uniform_b);
       } else {
         const uint r = gv_rank(&g, v);
         const uint count = gv_count(&g, r);
-        const uint m = min(gv_material(&g, r), material_count - 1u);
-        const RenderMaterial mat = materials[m];
-        if (mat.kind == VOXR_MATERIAL_OPAQUE) {
-          blocked = 1;
-        } else if (mat.kind == VOXR_MATERIAL_SHEET) {
+        const RenderMaterial mat = materials[min(gv_material(&g, r), material_count - 1u)];
+        if (mat.kind == VOXR_MATERIAL_OPAQUE) break;
+        if (mat.kind == VOXR_MATERIAL_SHEET) {
           const float3 t = max((float3)(mat.transmittance[0], mat.transmittance[1], mat.transmittance[2]),
                                (float3)(1e-30f));
           tau += (float)count * -log(t);
-          tau += sigma * sf_slab_length(&frame, i, j, k);
-        } else {
+        } else if (count & 1u) {
+          /* One boundary inside the slab: half of the slab is inside (the entered or the left one). */
           const float3 a = (float3)(mat.absorption[0], mat.absorption[1], mat.absorption[2]);
-          const float len = sf_slab_length(&frame, i, j, k);
-          if (count & 1u) {
-            /* One boundary inside the slab: half of the slab is inside (the entered or the left one). */
-            tau += (inside ? sigma : a) * (0.5f * len);
-            inside = !inside;
-            sigma = inside ? a : (float3)(0.0f);
+          const float half_slab = 0.5f * sf_slab_length(&frame, i, j, k);
+          if (inside) {
+            tau -= sigma * half_slab; /* added for the whole slab above */
+            sigma = (float3)(0.0f);
           } else {
-            tau += sigma * len;
+            tau += a * half_slab;
+            sigma = a;
           }
+          inside = !inside;
         }
       }
-    } else if (!blocked) {
-      tau += sigma * sf_slab_length(&frame, i, j, k);
     }
-    out[k] = blocked ? 0u : sf_pack(exp(-tau));
+    if (changed) packed = sf_pack(exp(-tau));
+    out[k] = packed;
   }
+  /* An opaque voxel blocks everything from its slab on. */
+  for (; k < dz; ++k) out[k] = 0u;
 }

@@ -102,7 +102,8 @@ TEST(FrameRenderer, ErrorFallsAsTheShadowGridGrows) {
 
 TEST(FrameRenderer, FramesAreDeterministic) {
   Frames frames(default_scene(), 64, 48);
-  for (ShadowMethod m : {ShadowMethod::kVoxel, ShadowMethod::kUniform, ShadowMethod::kFilter, ShadowMethod::kOpaque}) {
+  for (ShadowMethod m :
+       {ShadowMethod::kVoxel, ShadowMethod::kUniform, ShadowMethod::kFilter, ShadowMethod::kOpaque}) {
     const RenderedFrame a = frames.render(method(m, 64));
     const RenderedFrame b = frames.render(method(m, 64));
     EXPECT_EQ(a.image.pixels, b.image.pixels) << shadow_method_info(m).name;

@@ -29,7 +29,9 @@ TEST(RenderCli, EveryMethodWritesAnImageAndAReport) {
     const nlohmann::json j = nlohmann::json::parse(test::slurp(report));
     EXPECT_EQ(j["shadows"], method);
     EXPECT_GT(j["ms"]["frame"].get<double>(), 0.0);
-    if (method != "reference" && method != "none") EXPECT_TRUE(j.contains("light_grid")) << method;
+    if (method != "reference" && method != "none") {
+      EXPECT_TRUE(j.contains("light_grid")) << method;
+    }
   }
 }
 
@@ -56,9 +58,11 @@ TEST(RenderCli, BadFlagsAndOutputsAreOneLineErrors) {
   for (const Case& c : std::vector<Case>{
            {"render -o " + (scratch() / "x.bmp").string(), "x.bmp: the image format is chosen by extension"},
            {"render --shadows soft -o " + out.string(), "unknown shadow method 'soft'"},
-           {"render --shadows uniform --mode conservative -o " + out.string(), "--mode applies to --shadows voxel"},
+           {"render --shadows uniform --mode conservative -o " + out.string(),
+            "--mode applies to --shadows voxel"},
            {"render --size 64 -o " + out.string(), "--size '64'"},
-           {"render " + (scratch() / "missing.json").string() + " -o " + out.string(), "missing.json: no such file"},
+           {"render " + (scratch() / "missing.json").string() + " -o " + out.string(),
+            "missing.json: no such file"},
        }) {
     const test::CliResult r = run_voxr(c.args);
     EXPECT_NE(r.code, 0) << c.args;

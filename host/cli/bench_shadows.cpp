@@ -81,8 +81,8 @@ std::string fmt_psnr(double p) {
 
 int run_bench_shadows(const BenchShadowsArgs& args) {
   ClRuntime cl(args.device);
-  const std::string device =
-      fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name, cl.device().driver_version);
+  const std::string device = fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name,
+                                         cl.device().driver_version);
   fmt::print("device: {}\n", device);
   const size_t x = args.size.find('x');
   if (x == std::string::npos) fail("--size '{}': expected WIDTHxHEIGHT", args.size);
@@ -138,8 +138,8 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
       r.triangles = soup.triangle_count();
       r.light_grid = "BVH rebuild + shadow rays, host";
       rows.push_back(r);
-      fmt::print("  reference (BVH build + shadow rays): {:.1f} ms [{:.1f}, {:.1f}]\n", r.frame_ms, r.frame_min,
-                 r.frame_max);
+      fmt::print("  reference (BVH build + shadow rays): {:.1f} ms [{:.1f}, {:.1f}]\n", r.frame_ms,
+                 r.frame_min, r.frame_max);
     }
 
     for (const MethodCase& m : methods) {
@@ -170,10 +170,11 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
         row.device_bytes = stats.device_bytes;
         row.triangles = soup.triangle_count();
         rows.push_back(row);
-        fmt::print("  {:<18} {:>4}: {:8.2f} ms [{:.2f}, {:.2f}]  RMSE {:.4f} max {:.3f} >0.05 {:.2f}%  PSNR {} "
-                   "({}; load {:.2f})\n",
-                   m.label, res, row.frame_ms, row.frame_min, row.frame_max, row.error.rmse, row.error.max_abs,
-                   100.0 * row.error.share_over_threshold, fmt_psnr(row.psnr), row.light_grid, load_average());
+        fmt::print(
+            "  {:<18} {:>4}: {:8.2f} ms [{:.2f}, {:.2f}]  RMSE {:.4f} max {:.3f} >0.05 {:.2f}%  PSNR {} "
+            "({}; load {:.2f})\n",
+            m.label, res, row.frame_ms, row.frame_min, row.frame_max, row.error.rmse, row.error.max_abs,
+            100.0 * row.error.share_over_threshold, fmt_psnr(row.psnr), row.light_grid, load_average());
         std::fflush(stdout);
       }
     }
@@ -186,9 +187,9 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
       for (int r = 0; r < args.fresh; ++r) {
         std::vector<std::string> argv = {self.string(), "render"};
         if (scene_name != "default") argv.push_back(scene_name);
-        for (const std::string& a : {std::string("--shadows"), std::string("voxel"), std::string("--shadow-res"),
-                                     std::string("256"), std::string("--size"), args.size, std::string("-q"),
-                                     std::string("-o"), image.string()})
+        for (const std::string& a :
+             {std::string("--shadows"), std::string("voxel"), std::string("--shadow-res"), std::string("256"),
+              std::string("--size"), args.size, std::string("-q"), std::string("-o"), image.string()})
           argv.push_back(a);
         if (!args.device.empty()) {
           argv.push_back("--device");
@@ -216,21 +217,25 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
                        r.error.max_abs, r.error.share_over_threshold, fmt_psnr(r.psnr), r.error.receivers,
                        r.triangles, r.device_bytes, r.light_grid);
   std::ostringstream md;
-  md << fmt::format("# voxr bench shadows\n\nDevice: {}. Image {}. Warm frames: median of {} after {} warm-up "
-                    "[min, max], wall time of one whole frame read back to the host. Errors at the visible "
-                    "receivers against Embree's exact transmittance at the same points.\n\n",
-                    device, args.size, args.repeat, args.warmup);
-  md << "| scene | method | mode | res | frame ms | [min, max] | T RMSE | T max | > 0.05 | PSNR dB | light grid |\n"
+  md << fmt::format(
+      "# voxr bench shadows\n\nDevice: {}. Image {}. Warm frames: median of {} after {} warm-up "
+      "[min, max], wall time of one whole frame read back to the host. Errors at the visible "
+      "receivers against Embree's exact transmittance at the same points.\n\n",
+      device, args.size, args.repeat, args.warmup);
+  md << "| scene | method | mode | res | frame ms | [min, max] | T RMSE | T max | > 0.05 | PSNR dB | light "
+        "grid |\n"
         "|---|---|---|---:|---:|---|---:|---:|---:|---:|---|\n";
   for (const Row& r : rows)
-    md << fmt::format("| {} | {} | {} | {} | {:.2f} | [{:.2f}, {:.2f}] | {:.4f} | {:.3f} | {:.2f}% | {} | {} |\n",
-                      r.scene, r.method, r.mode, r.resolution ? std::to_string(r.resolution) : "-", r.frame_ms,
-                      r.frame_min, r.frame_max, r.error.rmse, r.error.max_abs,
-                      100.0 * r.error.share_over_threshold, fmt_psnr(r.psnr), r.light_grid);
+    md << fmt::format(
+        "| {} | {} | {} | {} | {:.2f} | [{:.2f}, {:.2f}] | {:.4f} | {:.3f} | {:.2f}% | {} | {} |\n", r.scene,
+        r.method, r.mode, r.resolution ? std::to_string(r.resolution) : "-", r.frame_ms, r.frame_min,
+        r.frame_max, r.error.rmse, r.error.max_abs, 100.0 * r.error.share_over_threshold, fmt_psnr(r.psnr),
+        r.light_grid);
   if (!fresh_table.empty())
     md << "\nFresh processes, `voxr render SCENE --shadows voxel --shadow-res 256 --size " << args.size
        << "` (wall ms, median [min, max] of " << args.fresh << "; includes opening the device, loading the "
-       << "programs from the cache, reading the scene and writing the PNG):\n\n| scene | triangles | ms | min | "
+       << "programs from the cache, reading the scene and writing the PNG):\n\n| scene | triangles | ms | "
+          "min | "
           "max |\n|---|---:|---:|---:|---:|\n"
        << fresh_table;
   write_file_atomically(args.out + ".csv", csv.str());
@@ -238,8 +243,10 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
   fmt::print("wrote {}.csv\nwrote {}.md\n", args.out, args.out);
   const fs::path script = fs::path(VOXR_SOURCE_DIR) / "bench" / "shadow_charts.py";
   if (fs::exists(script)) {
-    const int status = run_program({"/usr/bin/env", "python3", script.string(), args.out + ".csv", args.out + "-charts"});
-    if (status != 0) fmt::print(stderr, "voxr: warning: the charts were not drawn ({} failed)\n", script.string());
+    const int status =
+        run_program({"/usr/bin/env", "python3", script.string(), args.out + ".csv", args.out + "-charts"});
+    if (status != 0)
+      fmt::print(stderr, "voxr: warning: the charts were not drawn ({} failed)\n", script.string());
   }
   return 0;
 }

@@ -186,8 +186,12 @@ Command add_bench(CLI::App& app) {
   sh->add_option("--device", shadows->device, "OpenCL device P:D or name substring");
   sh->add_option("--out", shadows->out, "output prefix: PREFIX.csv, PREFIX.md, PREFIX-charts/")
       ->capture_default_str();
-  sh->add_option("--repeat", shadows->repeat, "timed frames per case")->check(CLI::Range(1, 1000))->capture_default_str();
-  sh->add_option("--warmup", shadows->warmup, "untimed frames first")->check(CLI::Range(0, 100))->capture_default_str();
+  sh->add_option("--repeat", shadows->repeat, "timed frames per case")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  sh->add_option("--warmup", shadows->warmup, "untimed frames first")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
   sh->add_option("--fresh", shadows->fresh, "fresh `voxr render` processes per scene (0: none)")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();

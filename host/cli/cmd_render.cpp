@@ -60,7 +60,8 @@ glm::uvec2 parse_size(const std::string& text) {
   if (x == std::string::npos) fail("--size '{}': expected WIDTHxHEIGHT, e.g. 640x480", text);
   const std::vector<double> w = parse_numbers(text.substr(0, x), 1, "--size");
   const std::vector<double> h = parse_numbers(text.substr(x + 1), 1, "--size");
-  if (w[0] < 1 || h[0] < 1 || w[0] > 16384 || h[0] > 16384 || w[0] != std::floor(w[0]) || h[0] != std::floor(h[0]))
+  if (w[0] < 1 || h[0] < 1 || w[0] > 16384 || h[0] > 16384 || w[0] != std::floor(w[0]) ||
+      h[0] != std::floor(h[0]))
     fail("--size '{}': width and height must be whole numbers in 1..16384", text);
   return {uint32_t(w[0]), uint32_t(h[0])};
 }
@@ -99,10 +100,11 @@ int run_render(const RenderArgs& args) {
   options.bias = args.bias;
   options.normal_offset = args.normal_offset;
   options.keep_samples = args.compare_reference;
-  if (!is_image_file(args.output)) fail("{}: the image format is chosen by extension: .png or .exr", args.output);
+  if (!is_image_file(args.output))
+    fail("{}: the image format is chosen by extension: .png or .exr", args.output);
   check_output_path(args.output);
   if (!args.report.empty()) check_output_path(args.report);
-  const std::optional<glm::uvec2> size = args.size.empty() ? std::nullopt : std::optional(parse_size(args.size));
+  const glm::uvec2 size = args.size.empty() ? glm::uvec2(0) : parse_size(args.size);  // 0: the camera's
   if (!args.input.empty()) {
     std::error_code ec;
     if (!std::filesystem::exists(args.input, ec)) fail("{}: no such file", args.input);
@@ -122,7 +124,7 @@ int run_render(const RenderArgs& args) {
   const TriangleSoup soup = take_scene_triangles(scene);
   validate_soup(soup, scene.source);
   const Bounds bounds = soup.bounds();
-  const uint32_t width = size ? size->x : scene.camera.width, height = size ? size->y : scene.camera.height;
+  const uint32_t width = size.x ? size.x : scene.camera.width, height = size.y ? size.y : scene.camera.height;
   const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, bounds, width, height);
   const RenderLight light = render_light(scene.light, scene.environment, soup.anchor);
   const std::vector<RenderMaterial> render_mats = render_materials(materials);
@@ -147,7 +149,9 @@ int run_render(const RenderArgs& args) {
       ReferenceRender r = render_reference(*reference, render_mats, light, camera);
       frame_ms.push_back(ms_since(frame_start) + (f == 0 ? reference->build_ms() : 0.0));
       image = std::move(r.image);
-      report["ms"] = {{"bvh_build", r.build_ms}, {"primary", r.primary_ms}, {"shadow", r.shadow_ms},
+      report["ms"] = {{"bvh_build", r.build_ms},
+                      {"primary", r.primary_ms},
+                      {"shadow", r.shadow_ms},
                       {"shade", r.shade_ms}};
     }
     (void)build_start;
@@ -169,15 +173,18 @@ int run_render(const RenderArgs& args) {
     for (const auto& [name, ms] : stats.stage_ms) stages[name] = ms;
     report["device"] = prepared.cl->device().label();
     report["driver"] = prepared.cl->device().driver_version;
-    report["ms"] = {{"stages", stages},         {"host", stats.host_ms},
-                    {"runtime", prepared.runtime_ms}, {"programs", prepared.programs_ms},
+    report["ms"] = {{"stages", stages},
+                    {"host", stats.host_ms},
+                    {"runtime", prepared.runtime_ms},
+                    {"programs", prepared.programs_ms},
                     {"wait", wait_ms}};
     if (options.shadows != ShadowMethod::kNone) {
-      report["light_grid"] = {{"kind", stats.light.projective() ? "frustum" : "orthographic"},
-                              {"dims", {stats.light.grid.dims.x, stats.light.grid.dims.y, stats.light.grid.dims.z}},
-                              {"describe", stats.light.describe()},
-                              {"triangles", stats.light_triangles},
-                              {"device_bytes", stats.device_bytes}};
+      report["light_grid"] = {
+          {"kind", stats.light.projective() ? "frustum" : "orthographic"},
+          {"dims", {stats.light.grid.dims.x, stats.light.grid.dims.y, stats.light.grid.dims.z}},
+          {"describe", stats.light.describe()},
+          {"triangles", stats.light_triangles},
+          {"device_bytes", stats.device_bytes}};
       if (options.shadows == ShadowMethod::kVoxel) report["mode"] = raster_mode_name(options.mode);
     }
     if (args.profile) fmt::print("{}\n", prepared.cl->profiler().table());
@@ -229,11 +236,12 @@ int run_render(const RenderArgs& args) {
     if (!stages.empty()) fmt::print("stages ms  {} (host {:.2f})\n", stages, stats.host_ms);
     if (report.contains("compare_reference")) {
       const auto& c = report["compare_reference"];
-      fmt::print("vs exact   transmittance RMSE {:.4f}, max {:.3f}, {:.2f}% of {} receivers off by > 0.05, "
-                 "PSNR {} dB\n",
-                 c["transmittance_rmse"].get<double>(), c["transmittance_max"].get<double>(),
-                 100.0 * c["share_over_0.05"].get<double>(), c["receivers"].get<uint64_t>(),
-                 c["psnr"].is_number() ? fmt::format("{:.2f}", c["psnr"].get<double>()) : "inf");
+      fmt::print(
+          "vs exact   transmittance RMSE {:.4f}, max {:.3f}, {:.2f}% of {} receivers off by > 0.05, "
+          "PSNR {} dB\n",
+          c["transmittance_rmse"].get<double>(), c["transmittance_max"].get<double>(),
+          100.0 * c["share_over_0.05"].get<double>(), c["receivers"].get<uint64_t>(),
+          c["psnr"].is_number() ? fmt::format("{:.2f}", c["psnr"].get<double>()) : "inf");
       fmt::print("wrote      {}\n", c["error_image"].get<std::string>());
     }
     fmt::print("process ms {:.1f}\n", report["ms"]["process"].get<double>());
@@ -247,8 +255,7 @@ int run_render(const RenderArgs& args) {
 Command add_render(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* sub = app.add_subcommand("render", "Render a scene with transparent shadows (.png or .exr)");
-  sub->add_option("input", args->input,
-                  "scene file (.json) or mesh; omitted: the built-in default scene");
+  sub->add_option("input", args->input, "scene file (.json) or mesh; omitted: the built-in default scene");
   sub->add_option("-o,--output", args->output, "image: .png (8-bit sRGB) or .exr (linear float)")
       ->capture_default_str();
   std::string methods;
@@ -276,8 +283,7 @@ Command add_render(CLI::App& app) {
       ->capture_default_str();
   sub->add_flag("--compare-reference", args->compare_reference,
                 "measure the shadows against the Embree reference at the same receivers; writes "
-                "OUT.error.png")
-      ;
+                "OUT.error.png");
   sub->add_option("--device", args->device, "OpenCL device P:D or name substring (also $VOXR_DEVICE)");
   sub->add_option("--report", args->report, "write a JSON report (times, light grid, errors)");
   sub->add_flag("--profile", args->profile, "print a per-kernel time table");

@@ -135,8 +135,8 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
 
   cl::Buffer& image = image_.ensure(cl_, pixels * 16, "image");
   cl::Kernel shade = cl_.kernel("shade.cl", "shade");
-  cl_.launch("shade", shade, pixels, kGroup, samples_.buffer, transmittance, cl_uint(pixels), materials_buffer_,
-             cl_uint(material_count_), light, image);
+  cl_.launch("shade", shade, pixels, kGroup, samples_.buffer, transmittance, cl_uint(pixels),
+             materials_buffer_, cl_uint(material_count_), light, image);
   frame.image = ImageRgba(camera.width, camera.height);
   cl_.download(image, frame.image.pixels.data(), pixels * 16, "download image");
   if (options.keep_samples) {

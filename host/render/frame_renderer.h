@@ -32,7 +32,7 @@ namespace voxr {
 
 struct RenderOptions {
   ShadowMethod shadows = ShadowMethod::kVoxel;
-  uint32_t shadow_resolution = 256;  // columns along the longer side of the light's grid (and its slabs)
+  uint32_t shadow_resolution = 256;       // columns along the longer side of the light's grid (and its slabs)
   RasterMode mode = RasterMode::kCenter;  // voxel: the light voxelizer's rule
   float bias = 1.0f;                      // slabs (or depth-map texels) towards the light
   float normal_offset = 0.5f;             // columns off the receiver's surface
@@ -53,8 +53,8 @@ struct FrameStats {
 
 struct RenderedFrame {
   ImageRgba image;
-  std::vector<SurfaceSample> samples;     // keep_samples: one per pixel, row 0 at the top
-  std::vector<glm::vec3> transmittance;   // keep_samples: the shadow method's, per pixel
+  std::vector<SurfaceSample> samples;    // keep_samples: one per pixel, row 0 at the top
+  std::vector<glm::vec3> transmittance;  // keep_samples: the shadow method's, per pixel
 };
 
 class FrameRenderer {

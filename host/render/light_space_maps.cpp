@@ -75,13 +75,14 @@ void LightSpaceMaps::build(const DeviceMesh& mesh, const LightFrame& frame, cons
 }
 
 void LightSpaceMaps::lookup(const cl::Buffer& samples, uint32_t count, const cl::Buffer& materials,
-                            uint32_t material_count, const RenderLight& light, float bias, float normal_offset,
-                            cl::Buffer& transmittance) {
+                            uint32_t material_count, const RenderLight& light, float bias,
+                            float normal_offset, cl::Buffer& transmittance) {
   cl::Kernel kernel = cl_.kernel("shadow_filter.cl", "shadow_map_lookup");
   const cl_uint filter = method_ == ShadowMethod::kFilter ? 1 : 0;
   const cl::Buffer& tau = filter ? optical_depth_.buffer : depth_.buffer;
-  cl_.launch("shadow_map_lookup", kernel, count, kGroup, samples, cl_uint(count), materials, cl_uint(material_count),
-             light, frame_.params, depth_.buffer, tau, filter, bias, normal_offset, transmittance);
+  cl_.launch("shadow_map_lookup", kernel, count, kGroup, samples, cl_uint(count), materials,
+             cl_uint(material_count), light, frame_.params, depth_.buffer, tau, filter, bias, normal_offset,
+             transmittance);
 }
 
 }  // namespace voxr
