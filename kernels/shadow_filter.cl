@@ -74,6 +74,10 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_m
     p += n * (normal_offset * sf_column_width(&frame, p));
     const float3 g = sf_to_grid(&frame, p);
     const int w = (int)frame.dims[0], h = (int)frame.dims[1];
+    if (!(g.x >= 0.0f && g.y >= 0.0f && g.x <= (float)w && g.y <= (float)h)) {
+      transmittance[id] = (float4)(1.0f); /* beyond every caster's columns: lit */
+      return;
+    }
     const float receiver = (g.z - bias) / (float)frame.dims[2];
     /* Texel centres: column i at x = i + 0.5; image row y = dims.y - 1 - j. */
     const float x = g.x - 0.5f, y = g.y - 0.5f;

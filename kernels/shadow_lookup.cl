@@ -1,7 +1,8 @@
 /* shadow_lookup.cl — each receiver's transmittance from a light-grid transmittance volume
  * (shadow_transmittance.cl): the receiver, pushed off its surface by `normal_offset` columns along the normal
  * turned to the light and moved `bias` slabs towards the light (against self-shadow acne), is interpolated
- * bilinearly between the four nearest columns and linearly within its slab. */
+ * bilinearly between the four nearest columns and linearly within its slab. Receivers outside the grid's
+ * columns are lit: the grid covers every caster that can shadow a receiver (host/render/light_frame.h). */
 #include "shadow_frame.h"
 
 #ifndef SHADOW_GROUP
@@ -36,6 +37,11 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_l
     p += n * (normal_offset * sf_column_width(&frame, p));
     const float3 gp = sf_to_grid(&frame, p);
     const uint dx = frame.dims[0], dy = frame.dims[1], dz = frame.dims[2];
+    /* Outside the grid's columns no caster can reach the receiver (light_frame.h): lit. */
+    if (!(gp.x >= 0.0f && gp.y >= 0.0f && gp.x <= (float)dx && gp.y <= (float)dy)) {
+      transmittance[id] = (float4)(1.0f);
+      return;
+    }
     const float x = gp.x - 0.5f, y = gp.y - 0.5f, z = gp.z - bias;
     const float fx = floor(x), fy = floor(y);
     const float wx = x - fx, wy = y - fy;

@@ -47,8 +47,8 @@ struct RenderArgs {
   std::string size;  // empty: the scene camera's
   std::string device;
   std::string report;
-  float bias = 1.0f;
-  float normal_offset = 0.5f;
+  float bias = kDefaultShadowBias;
+  float normal_offset = kDefaultNormalOffset;
   uint32_t frames = 1;
   bool compare_reference = false;
   bool profile = false;

@@ -60,8 +60,7 @@ int run(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "voxr 0.1.0");
   const voxr::cli::Command commands[] = {voxr::cli::add_devices(app), voxr::cli::add_voxelize(app),
-                                         voxr::cli::add_render(app),
-                                         voxr::cli::add_bench(app)};
+                                         voxr::cli::add_render(app), voxr::cli::add_bench(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

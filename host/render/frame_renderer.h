@@ -34,9 +34,9 @@ struct RenderOptions {
   ShadowMethod shadows = ShadowMethod::kVoxel;
   uint32_t shadow_resolution = 256;       // columns along the longer side of the light's grid (and its slabs)
   RasterMode mode = RasterMode::kCenter;  // voxel: the light voxelizer's rule
-  float bias = 1.0f;                      // slabs (or depth-map texels) towards the light
-  float normal_offset = 0.5f;             // columns off the receiver's surface
-  bool keep_samples = false;              // read back the samples and their transmittance too
+  float bias = kDefaultShadowBias;        // slabs (or depth-map texels) towards the light
+  float normal_offset = kDefaultNormalOffset;  // columns off the receiver's surface
+  bool keep_samples = false;                   // read back the samples and their transmittance too
 };
 
 // Transmittance computed on the host for samples read back (the Embree reference): one RGB per sample.

@@ -81,6 +81,54 @@ Bounds visible_bounds(const Bounds& scene, const CameraFrame& camera) {
   return out.empty() ? scene : out;
 }
 
+namespace {
+
+// Light space: (x, y, depth) with x, y the column coordinates (orthographic: world units across the light;
+// frustum: x/z and y/z in the light's view) and depth along the light.
+struct LightSpace {
+  bool projective = false;
+  glm::mat3 rows{1.0f};  // the frame's x, y, z axes as rows
+  glm::vec3 light{0.0f};
+  glm::vec3 operator()(const glm::vec3& p) const {
+    if (!projective) return rows * p;
+    const glm::vec3 q = rows * (p - light);
+    return glm::vec3(q.x / q.z, q.y / q.z, q.z);
+  }
+  float view_depth(const glm::vec3& p) const { return projective ? (rows * (p - light)).z : (rows * p).z; }
+};
+
+struct Footprint {
+  glm::vec2 lo{kInf}, hi{-kInf};
+  bool empty() const { return lo.x > hi.x || lo.y > hi.y; }
+  void extend(glm::vec2 p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  bool overlaps(const Footprint& o) const {
+    return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y;
+  }
+};
+
+// Whether triangle (a, b, c) can shadow a point of `corners`' box: some corner lies beyond its plane, on the
+// side away from the light, by more than `eps` (a floor under everything shadows nothing that is visible).
+bool casts_on(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+              const std::array<glm::vec3, 8>& corners, const RenderLight& light, float eps) {
+  const glm::vec3 n = glm::cross(b - a, c - a);
+  const float len = glm::length(n);
+  if (!(len > 0.0f)) return false;
+  const glm::vec3 u = n / len;
+  const float light_side =
+      light.directional ? -glm::dot(u, glm::vec3(light.direction[0], light.direction[1], light.direction[2]))
+                        : glm::dot(u, glm::vec3(light.position[0], light.position[1], light.position[2]) - a);
+  for (const glm::vec3& k : corners) {
+    const float d = glm::dot(u, k - a);
+    if ((light_side >= 0.0f && d < -eps) || (light_side <= 0.0f && d > eps)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, const TriangleSoup& casters,
                            uint32_t resolution) {
   check_resolution(resolution);
@@ -88,99 +136,109 @@ LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, co
   LightFrame f;
   const auto rc = corners(receivers);
   const uint32_t n = resolution;
+  const glm::vec3 size = receivers.size();
+  const float eps = 1e-4f * std::max({size.x, size.y, size.z, 1e-6f});
 
+  LightSpace space;
+  space.projective = !light.directional;
   if (light.directional) {
-    const glm::vec3 dir =
-        glm::normalize(glm::vec3(light.direction[0], light.direction[1], light.direction[2]));
-    const glm::mat3 rows = frame_rows(dir);
-    // Light-space box of the receivers.
-    glm::vec3 lo(kInf), hi(-kInf);
-    for (const glm::vec3& c : rc) {
-      const glm::vec3 q = rows * c;
-      lo = glm::min(lo, q);
-      hi = glm::max(hi, q);
-    }
-    // Nearest caster vertex inside the receivers' columns, in front of their far end.
-    float z_near = lo.z;
-    for (size_t v = 0; v < casters.positions.size(); ++v) {
-      const glm::vec3 q = rows * glm::vec3(casters.positions[v]);
-      if (q.x >= lo.x && q.x <= hi.x && q.y >= lo.y && q.y <= hi.y && q.z < z_near) z_near = q.z;
-    }
-    const float extent = std::max({hi.x - lo.x, hi.y - lo.y, 1e-6f});
-    // One voxel of margin on every side of the columns (bilinear lookups at the edge), half a voxel in depth.
-    const float h = extent / float(n - 2);
-    const glm::uvec3 dims(std::max(1u, uint32_t(std::ceil((hi.x - lo.x) / h)) + 2),
-                          std::max(1u, uint32_t(std::ceil((hi.y - lo.y) / h)) + 2),
-                          std::min(4 * n, std::max(1u, uint32_t(std::ceil((hi.z - z_near) / h + 1.0f)))));
-    const glm::vec3 lo_light(lo.x - h, lo.y - h, z_near - 0.5f * h);
-    f.grid.axes = glm::transpose(rows);  // columns: x, y, z axes in world space
-    f.grid.origin = f.grid.axes * lo_light;
-    f.grid.anchor = casters.anchor;
-    f.grid.voxel_size = h;
-    f.grid.dims = dims;
-    const auto m = f.grid.world_to_grid();
-    std::copy(m.begin(), m.end(), f.params.to_light);
-    f.params.projective = 0;
-    f.params.voxel_size = h;
+    space.rows =
+        frame_rows(glm::normalize(glm::vec3(light.direction[0], light.direction[1], light.direction[2])));
   } else {
-    const glm::vec3 L(light.position[0], light.position[1], light.position[2]);
+    space.light = glm::vec3(light.position[0], light.position[1], light.position[2]);
+    const glm::vec3 L = space.light;
     if (glm::all(glm::greaterThan(L, receivers.lo)) && glm::all(glm::lessThan(L, receivers.hi)))
       fail(
           "the point light at ({:.4g}, {:.4g}, {:.4g}) (anchor-relative) lies among the receivers: a "
           "transparent shadow map's frustum cannot see all around it; move it or use a directional light",
           L.x, L.y, L.z);
-    const glm::vec3 centre = 0.5f * (receivers.lo + receivers.hi);
-    const glm::mat3 rows = frame_rows(glm::normalize(centre - L));
-    float u0 = kInf, u1 = -kInf, v0 = kInf, v1 = -kInf, z_far = 0.0f, z_min_receiver = kInf;
-    for (const glm::vec3& c : rc) {
-      const glm::vec3 q = rows * (c - L);
-      if (!(q.z > 0.0f))
-        fail(
-            "the point light at ({:.4g}, {:.4g}, {:.4g}) (anchor-relative) is beside or among the receivers: "
-            "a frustum grid cannot hold them; move the light or use a directional light",
-            L.x, L.y, L.z);
-      u0 = std::min(u0, q.x / q.z);
-      u1 = std::max(u1, q.x / q.z);
-      v0 = std::min(v0, q.y / q.z);
-      v1 = std::max(v1, q.y / q.z);
-      z_far = std::max(z_far, q.z);
-      z_min_receiver = std::min(z_min_receiver, q.z);
+    space.rows = frame_rows(glm::normalize(0.5f * (receivers.lo + receivers.hi) - L));
+  }
+
+  // The receivers' columns and depth range.
+  Footprint receiving;
+  float receivers_near = kInf, receivers_far = -kInf;
+  for (const glm::vec3& c : rc) {
+    if (space.projective && !(space.view_depth(c) > 0.0f))
+      fail(
+          "the point light at ({:.4g}, {:.4g}, {:.4g}) (anchor-relative) is beside or among the receivers: a "
+          "frustum grid cannot hold them; move the light or use a directional light",
+          space.light.x, space.light.y, space.light.z);
+    const glm::vec3 q = space(c);
+    receiving.extend(glm::vec2(q));
+    receivers_near = std::min(receivers_near, q.z);
+    receivers_far = std::max(receivers_far, q.z);
+  }
+  // The columns of the triangles that can shadow a receiver, and their nearest depth.
+  const float depth_floor = space.projective ? 1e-3f * receivers_far : -kInf;
+  Footprint casting;
+  for (const glm::uvec4& t : casters.triangles) {
+    const glm::vec3 a(casters.positions[t.x]), b(casters.positions[t.y]), c(casters.positions[t.z]);
+    if (!casts_on(a, b, c, rc, light, eps)) continue;
+    for (const glm::vec3& p : {a, b, c})
+      if (space.view_depth(p) > depth_floor) casting.extend(glm::vec2(space(p)));
+  }
+  Footprint fp = receiving;
+  if (!casting.empty() && casting.overlaps(receiving)) {
+    fp.lo = glm::max(receiving.lo, casting.lo);
+    fp.hi = glm::min(receiving.hi, casting.hi);
+  }
+  // Only casters need slabs: a receiver nearer the light than all of them is lit (depth < 0 in the grid).
+  float near = kInf;
+  for (const glm::uvec4& t : casters.triangles) {
+    const glm::vec3 a(casters.positions[t.x]), b(casters.positions[t.y]), c(casters.positions[t.z]);
+    Footprint tri;
+    float tri_near = kInf;
+    bool in_front = true;
+    for (const glm::vec3& p : {a, b, c}) {
+      in_front = in_front && space.view_depth(p) > depth_floor;
+      if (!in_front) break;
+      const glm::vec3 q = space(p);
+      tri.extend(glm::vec2(q));
+      tri_near = std::min(tri_near, q.z);
     }
-    // Nearest caster vertex inside the frustum (a caster nearer the light than the receivers' box).
-    float z_near = z_min_receiver;
-    const float z_floor = 1e-3f * z_far;
-    for (size_t v = 0; v < casters.positions.size(); ++v) {
-      const glm::vec3 q = rows * (glm::vec3(casters.positions[v]) - L);
-      if (q.z > z_floor && q.z < z_near && q.x >= u0 * q.z && q.x <= u1 * q.z && q.y >= v0 * q.z &&
-          q.y <= v1 * q.z)
-        z_near = q.z;
-    }
-    z_near = std::max(z_floor, z_near * 0.999f);
-    z_far *= 1.001f;
-    const float su = u1 - u0, sv = v1 - v0, s = std::max({su, sv, 1e-6f});
-    const float du = s / float(n - 2);  // one column of margin each side
-    u0 -= du;
-    v0 -= du;
-    const glm::uvec3 dims(uint32_t(std::ceil(su / du)) + 2, uint32_t(std::ceil(sv / du)) + 2, n);
+    if (in_front && tri_near < near && tri.overlaps(fp) && casts_on(a, b, c, rc, light, eps)) near = tri_near;
+  }
+  if (!(near < receivers_far)) near = receivers_near;
+  const glm::vec2 extent = glm::max(fp.hi - fp.lo, glm::vec2(1e-6f));
+  // One column of margin on every side (bilinear lookups at the edge).
+  const float h = std::max(extent.x, extent.y) / float(n - 2);
+  const glm::uvec2 columns(uint32_t(std::ceil(extent.x / h)) + 2, uint32_t(std::ceil(extent.y / h)) + 2);
+  if (!space.projective) {
+    // Cubic voxels; half a voxel of margin in depth.
+    const uint32_t slabs =
+        std::min(4 * n, std::max(1u, uint32_t(std::ceil((receivers_far - near) / h + 1.0f))));
+    const glm::vec3 lo_light(fp.lo.x - h, fp.lo.y - h, near - 0.5f * h);
+    f.grid.axes = glm::transpose(space.rows);  // columns: x, y, z axes in world space
+    f.grid.origin = f.grid.axes * lo_light;
+    f.grid.anchor = casters.anchor;
+    f.grid.voxel_size = h;
+    f.grid.dims = glm::uvec3(columns, slabs);
+    const auto m = f.grid.world_to_grid();
+    std::copy(m.begin(), m.end(), f.params.to_light);
+    f.params.projective = 0;
+    f.params.voxel_size = h;
+  } else {
+    const float z_near = std::max(depth_floor, near * 0.999f), z_far = receivers_far * 1.001f;
     f.grid = GridSpec{};
-    f.grid.dims = dims;
+    f.grid.dims = glm::uvec3(columns, n);
     f.grid.anchor = glm::dvec3(0.0);
-    f.light_position = L;
-    f.view = rows;
+    f.light_position = space.light;
+    f.view = space.rows;
     f.near_depth = z_near;
     f.far_depth = z_far;
-    const glm::mat3 axes = glm::transpose(rows);  // columns: the view's x, y, z axes
+    const glm::mat3 axes = glm::transpose(space.rows);  // columns: the view's x, y, z axes
     for (int r = 0; r < 3; ++r) {
       f.params.to_light[4 * r + 0] = axes[r].x;
       f.params.to_light[4 * r + 1] = axes[r].y;
       f.params.to_light[4 * r + 2] = axes[r].z;
-      f.params.to_light[4 * r + 3] = -glm::dot(axes[r], L);
+      f.params.to_light[4 * r + 3] = -glm::dot(axes[r], space.light);
     }
     f.params.projective = 1;
-    f.params.u0 = u0;
-    f.params.v0 = v0;
-    f.params.inv_du = 1.0f / du;
-    f.params.inv_dv = 1.0f / du;
+    f.params.u0 = fp.lo.x - h;
+    f.params.v0 = fp.lo.y - h;
+    f.params.inv_du = 1.0f / h;
+    f.params.inv_dv = 1.0f / h;
     f.params.inv_near = 1.0f / z_near;
     f.params.depth_scale = float(n) / (1.0f / z_near - 1.0f / z_far);
   }

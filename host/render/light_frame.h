@@ -45,12 +45,14 @@ struct LightFrame {
 // the camera's view frustum between its near and far planes).
 Bounds visible_bounds(const Bounds& scene, const CameraFrame& camera);
 
-// Fits the light's grid: `resolution` columns along the longer of the grid's x and y, `resolution` slabs
-// (orthographic: as many cubic voxels as the depth needs, at most 4 x resolution). `receivers` are the
-// anchor-relative bounds to shadow; `casters` the positions of the triangles that may cast (their vertices
-// inside the receivers' columns and in front of the far end set the nearest slab). Throws voxr::Error when a
-// point light lies inside the receivers' bounds (a frustum cannot see all around; use a directional light)
-// or the resolution is out of range.
+// Fits the light's grid: `resolution` columns along the longer side of its footprint, `resolution` slabs
+// (orthographic: as many cubic voxels as the depth needs, at most 4 x resolution). The footprint is the
+// receivers' columns (`receivers`: anchor-relative bounds of what the camera sees) cut down to the columns of
+// the triangles that can shadow a receiver (some corner of the receivers' box lies beyond the triangle's
+// plane, away from the light: a floor under everything casts nothing visible); the depth runs from the
+// nearest such caster in the footprint to the farthest receiver. Receivers outside the footprint are lit.
+// Throws voxr::Error when a point light lies inside the receivers' bounds (a frustum cannot see all around;
+// use a directional light) or the resolution is out of range.
 LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, const TriangleSoup& casters,
                            uint32_t resolution);
 

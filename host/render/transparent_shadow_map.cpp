@@ -40,6 +40,15 @@ void TransparentShadowMap::build(const DeviceMesh& light_mesh, const LightFrame&
                                  VoxelizeStats* stats) {
   VOXR_CHECK(material_count > 0);
   frame_ = frame;
+  const glm::uvec3 d = frame.grid.dims;
+  const uint64_t volume_bytes = uint64_t(d.x) * d.y * d.z * 4;
+  if (volume_bytes > cl_.device().max_allocation)
+    fail(
+        "--shadow-res: the transmittance volume of the light grid {} x {} x {} needs {:.0f} MiB, more than "
+        "the "
+        "largest buffer {} allows ({:.0f} MiB); use a smaller --shadow-res",
+        d.x, d.y, d.z, double(volume_bytes) / (1 << 20), cl_.device().name,
+        double(cl_.device().max_allocation) / (1 << 20));
   const VoxelizeOptions vopt = voxelize_options(options);
   voxelizer_.run(light_mesh, frame.grid, vopt, grid_, stats);
   if (!grid_.has_rank_index && options.method == ShadowMethod::kVoxel) build_rank_index(cl_, grid_);

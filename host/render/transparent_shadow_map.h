@@ -33,8 +33,8 @@ struct ShadowMapOptions {
   RasterMode mode = RasterMode::kCenter;       // voxel: the voxelizer's rule
   // Lookups move each receiver `bias` slabs towards the light and `normal_offset` columns off its surface:
   // the receiver's own crossing must not shadow it (acne); too much lets near casters' light leak through.
-  float bias = 1.0f;
-  float normal_offset = 0.5f;
+  float bias = kDefaultShadowBias;
+  float normal_offset = kDefaultNormalOffset;
 };
 
 class TransparentShadowMap {
