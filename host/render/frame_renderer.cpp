@@ -84,7 +84,9 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
     if (st.light.projective()) projected = project_to_light_grid(*soup_, st.light);
     const TriangleSoup& light_soup = st.light.projective() ? projected : *soup_;
     DeviceMesh light_mesh = upload_mesh(cl_, light_soup, st.light.grid, SplitCull::kGrid);
-    const glm::vec3 tau = uniform_optical_depth(*soup_, materials_, st.light.grid.voxel_size);
+    const glm::vec3 tau = options.shadows == ShadowMethod::kUniform
+                              ? uniform_optical_depth(*soup_, materials_, st.light.mean_slab_length())
+                              : glm::vec3(0.0f);
     host_ms += ms_since(host_start);
     st.light_triangles = light_mesh.triangle_count();
     shadow_map_.build(light_mesh, st.light, materials_buffer_, material_count_, tau,

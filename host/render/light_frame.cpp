@@ -172,11 +172,30 @@ LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, co
   // The columns of the triangles that can shadow a receiver, and their nearest depth.
   const float depth_floor = space.projective ? 1e-3f * receivers_far : -kInf;
   Footprint casting;
+  // Per casting triangle: its light-space box and nearest depth (vertices in front of the light only).
+  struct Caster {
+    Footprint box;
+    float near;
+  };
+  std::vector<Caster> casting_triangles;
   for (const glm::uvec4& t : casters.triangles) {
     const glm::vec3 a(casters.positions[t.x]), b(casters.positions[t.y]), c(casters.positions[t.z]);
     if (!casts_on(a, b, c, rc, light, eps)) continue;
-    for (const glm::vec3& p : {a, b, c})
-      if (space.view_depth(p) > depth_floor) casting.extend(glm::vec2(space(p)));
+    Caster k{{}, kInf};
+    bool in_front = true;
+    for (const glm::vec3& p : {a, b, c}) {
+      if (!(space.view_depth(p) > depth_floor)) {
+        in_front = false;
+        continue;
+      }
+      const glm::vec3 q = space(p);
+      k.box.extend(glm::vec2(q));
+      k.near = std::min(k.near, q.z);
+    }
+    if (k.box.empty()) continue;
+    casting.extend(k.box.lo);
+    casting.extend(k.box.hi);
+    if (in_front) casting_triangles.push_back(k);
   }
   Footprint fp = receiving;
   if (!casting.empty() && casting.overlaps(receiving)) {
@@ -185,20 +204,8 @@ LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, co
   }
   // Only casters need slabs: a receiver nearer the light than all of them is lit (depth < 0 in the grid).
   float near = kInf;
-  for (const glm::uvec4& t : casters.triangles) {
-    const glm::vec3 a(casters.positions[t.x]), b(casters.positions[t.y]), c(casters.positions[t.z]);
-    Footprint tri;
-    float tri_near = kInf;
-    bool in_front = true;
-    for (const glm::vec3& p : {a, b, c}) {
-      in_front = in_front && space.view_depth(p) > depth_floor;
-      if (!in_front) break;
-      const glm::vec3 q = space(p);
-      tri.extend(glm::vec2(q));
-      tri_near = std::min(tri_near, q.z);
-    }
-    if (in_front && tri_near < near && tri.overlaps(fp) && casts_on(a, b, c, rc, light, eps)) near = tri_near;
-  }
+  for (const Caster& k : casting_triangles)
+    if (k.near < near && k.box.overlaps(fp)) near = k.near;
   if (!(near < receivers_far)) near = receivers_near;
   const glm::vec2 extent = glm::max(fp.hi - fp.lo, glm::vec2(1e-6f));
   // One column of margin on every side (bilinear lookups at the edge).
