@@ -428,7 +428,8 @@ TEST(AssimpReader, TruncatedGlb) {
   const fs::path path = export_scene(*make_scene(), dir, "glb2", ".glb");
   fs::resize_file(path, fs::file_size(path) / 2);
   const std::string message = error_of(path);
-  EXPECT_NE(message.find("scene.glb: the binary glTF header gives a length of"), std::string::npos) << message;
+  EXPECT_NE(message.find("scene.glb: the binary glTF header gives a length of"), std::string::npos)
+      << message;
 }
 
 std::string base64(const std::string& bytes) {

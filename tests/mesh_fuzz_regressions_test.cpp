@@ -81,7 +81,8 @@ TEST(MeshFuzzRegressions, HugeHeaderCountsReserveNothing) {
 }
 
 // glTF whose embedded base64 buffer holds a byte that is not base64 (the seed cube with one byte changed):
-// Assimp 5.2.5 leaked the decoded buffer on this input (fuzz/lsan.supp); voxr refuses it before Assimp reads it.
+// Assimp 5.2.5 leaked the decoded buffer on this input (fuzz/lsan.supp); voxr refuses it before Assimp reads
+// it.
 TEST(MeshFuzzRegressions, GltfBadBase64IsAnError) {
   std::ifstream in(fs::path(VOXR_SOURCE_DIR) / "fuzz" / "corpus" / "gltf" / "cube.gltf", std::ios::binary);
   std::string gltf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -348,7 +348,8 @@ TEST(MeshLoader, ReadsOffNumbersExactly) {
   triangulate(polygons, triangles, report);
   const TriangleSoup soup = load_mesh(dir.write("numbers.off", s));
   // Positions are the file's numbers relative to the anchor, rounded to float once.
-  for (size_t v = 0; v < vertices; ++v) expected[v] = glm::vec4(glm::vec3(polygons.positions[v] - soup.anchor), 1.0f);
+  for (size_t v = 0; v < vertices; ++v)
+    expected[v] = glm::vec4(glm::vec3(polygons.positions[v] - soup.anchor), 1.0f);
   ASSERT_EQ(soup.positions.size(), expected.size());
   for (size_t v = 0; v < vertices; ++v)
     ASSERT_EQ(std::memcmp(&soup.positions[v], &expected[v], sizeof expected[v]), 0) << "vertex " << v;

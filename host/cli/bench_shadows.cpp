@@ -30,6 +30,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Debian's python3, where python3-matplotlib is installed (a pyenv or venv python3 first on PATH may lack it).
+constexpr const char* kSystemPython = "/usr/bin/python3";
+
 struct MethodCase {
   std::string label;  // voxel-center, uniform, ...
   RenderOptions options;
@@ -244,7 +247,7 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
   const fs::path script = fs::path(VOXR_SOURCE_DIR) / "bench" / "shadow_charts.py";
   if (fs::exists(script)) {
     const int status =
-        run_program({"/usr/bin/env", "python3", script.string(), args.out + ".csv", args.out + "-charts"});
+        run_program({kSystemPython, script.string(), args.out + ".csv", args.out + "-charts"});
     if (status != 0)
       fmt::print(stderr, "voxr: warning: the charts were not drawn ({} failed)\n", script.string());
   }

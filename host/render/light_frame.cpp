@@ -257,16 +257,17 @@ LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, co
 
 namespace {
 
-// Clips polygon `poly` (view-space points) to z >= z_min; Sutherland-Hodgman against one plane.
-std::vector<glm::vec3> clip_near(const std::array<glm::vec3, 3>& tri, float z_min) {
-  std::vector<glm::vec3> out;
+// Clips triangle `tri` (view-space points) to z >= z_min (Sutherland-Hodgman against one plane): at most 4
+// corners, written to `out`; returns how many.
+int clip_near(const std::array<glm::vec3, 3>& tri, float z_min, std::array<glm::vec3, 4>& out) {
+  int n = 0;
   for (int e = 0; e < 3; ++e) {
     const glm::vec3 a = tri[e], b = tri[(e + 1) % 3];
     const bool ina = a.z >= z_min, inb = b.z >= z_min;
-    if (ina) out.push_back(a);
-    if (ina != inb) out.push_back(a + (b - a) * ((z_min - a.z) / (b.z - a.z)));
+    if (ina) out[n++] = a;
+    if (ina != inb) out[n++] = a + (b - a) * ((z_min - a.z) / (b.z - a.z));
   }
-  return out;
+  return n;
 }
 
 }  // namespace
@@ -277,35 +278,41 @@ TriangleSoup project_to_light_grid(const TriangleSoup& soup, const LightFrame& f
   out.anchor = glm::dvec3(0.0);
   const glm::vec3 dims(frame.grid.dims);
   const float z_min = 0.5f * frame.near_depth;
-  std::vector<glm::vec4> positions;
-  std::vector<glm::uvec4> triangles;
-  positions.reserve(soup.positions.size());
-  triangles.reserve(soup.triangles.size());
-  // View-space positions of every vertex, once.
-  std::vector<glm::vec3> view(soup.positions.size());
-  for (size_t v = 0; v < view.size(); ++v)
-    view[v] = frame.view * (glm::vec3(soup.positions[v]) - frame.light_position);
+  const ShadowFrame& p = frame.params;
   auto project = [&](const glm::vec3& q) {
-    return glm::vec3((q.x / q.z - frame.params.u0) * frame.params.inv_du,
-                     (q.y / q.z - frame.params.v0) * frame.params.inv_dv,
-                     (frame.params.inv_near - 1.0f / q.z) * frame.params.depth_scale);
+    return glm::vec3((q.x / q.z - p.u0) * p.inv_du, (q.y / q.z - p.v0) * p.inv_dv,
+                     (p.inv_near - 1.0f / q.z) * p.depth_scale);
   };
-  std::vector<int64_t> mapped(view.size(), -1);  // projected vertex index of an unclipped vertex
+  // Every vertex in the light's view and, in front of the near cut, in grid units: once.
+  std::vector<glm::vec3> view(soup.positions.size()), grid(soup.positions.size());
+  for (size_t v = 0; v < view.size(); ++v) {
+    view[v] = frame.view * (glm::vec3(soup.positions[v]) - frame.light_position);
+    if (view[v].z >= z_min) grid[v] = project(view[v]);
+  }
+  out.positions.reserve(soup.positions.size());
+  out.triangles.reserve(soup.triangles.size());
+  std::vector<uint32_t> mapped(view.size(), ~0u);  // output index of an unclipped vertex
+  std::array<glm::vec3, 4> clipped, g;
   for (size_t t = 0; t < soup.triangles.size(); ++t) {
     const glm::uvec4 tri = soup.triangles[t];
     const std::array<glm::vec3, 3> q{view[tri.x], view[tri.y], view[tri.z]};
-    if (q[0].z < z_min && q[1].z < z_min && q[2].z < z_min) continue;
-    const bool whole = q[0].z >= z_min && q[1].z >= z_min && q[2].z >= z_min;
-    std::vector<glm::vec3> poly = whole ? std::vector<glm::vec3>(q.begin(), q.end()) : clip_near(q, z_min);
-    std::vector<glm::vec3> g(poly.size());
-    for (size_t c = 0; c < poly.size(); ++c) g[c] = project(poly[c]);
+    const int in_front = int(q[0].z >= z_min) + int(q[1].z >= z_min) + int(q[2].z >= z_min);
+    if (in_front == 0) continue;
+    const bool whole = in_front == 3;
+    int n = 3;
+    if (whole) {
+      for (int c = 0; c < 3; ++c) g[c] = grid[tri[c]];
+    } else {
+      n = clip_near(q, z_min, clipped);
+      for (int c = 0; c < n; ++c) g[c] = project(clipped[c]);
+    }
     // Cull when every corner is beyond the same side of the grid.
     bool outside = false;
     for (int a = 0; a < 3 && !outside; ++a) {
       bool below = true, above = true;
-      for (const glm::vec3& p : g) {
-        below = below && p[a] < 0.0f;
-        above = above && p[a] > dims[a];
+      for (int c = 0; c < n; ++c) {
+        below = below && g[c][a] < 0.0f;
+        above = above && g[c][a] > dims[a];
       }
       outside = below || above;
     }
@@ -313,23 +320,21 @@ TriangleSoup project_to_light_grid(const TriangleSoup& soup, const LightFrame& f
     if (whole) {
       glm::uvec4 out_tri(0, 0, 0, tri.w);
       for (int c = 0; c < 3; ++c) {
-        const uint32_t src = tri[c];
-        if (mapped[src] < 0) {
-          mapped[src] = int64_t(positions.size());
-          positions.emplace_back(g[c], 1.0f);
+        uint32_t& m = mapped[tri[c]];
+        if (m == ~0u) {
+          m = uint32_t(out.positions.size());
+          out.positions.emplace_back(g[c], 1.0f);
         }
-        out_tri[c] = uint32_t(mapped[src]);
+        out_tri[c] = m;
       }
-      triangles.push_back(out_tri);
+      out.triangles.push_back(out_tri);
     } else {
-      const uint32_t base = uint32_t(positions.size());
-      for (const glm::vec3& p : g) positions.emplace_back(p, 1.0f);
-      for (size_t c = 1; c + 1 < g.size(); ++c)
-        triangles.emplace_back(base, base + uint32_t(c), base + uint32_t(c + 1), tri.w);
+      const uint32_t base = uint32_t(out.positions.size());
+      for (int c = 0; c < n; ++c) out.positions.emplace_back(g[c], 1.0f);
+      for (int c = 1; c + 1 < n; ++c)
+        out.triangles.emplace_back(base, base + uint32_t(c), base + uint32_t(c + 1), tri.w);
     }
   }
-  out.positions.assign(positions.begin(), positions.end());
-  out.triangles.assign(triangles.begin(), triangles.end());
   return out;
 }
 
