@@ -8,6 +8,7 @@
 #include <map>
 
 #include "cl/program_cache.h"
+#include "voxr_layout.h"
 #include "test_support.h"
 
 namespace voxr {
@@ -38,6 +39,11 @@ TEST(ProgramCache, TruncatedEntriesAreIgnored) {
     EXPECT_FALSE(cache.load("k")) << cut;
   }
 }
+
+// What layout_probe.cl writes: one value per layout entry and the lattice constant.
+#define VOXR_COUNT_ENTRY(...) +1
+constexpr size_t kProbeValues = 1 VOXR_LAYOUT_ENTRIES(VOXR_COUNT_ENTRY, VOXR_COUNT_ENTRY);
+#undef VOXR_COUNT_ENTRY
 
 TEST(ProgramCache, CorruptBinariesAreRebuiltFromSource) {
   test::TempDir dir;
@@ -71,7 +77,7 @@ TEST(ProgramCache, CorruptBinariesAreRebuiltFromSource) {
     corrupt_size[entry.path()] = entry.file_size();
   {
     ClRuntime cl;
-    cl::Buffer out = cl.buffer(256, "probe");
+    cl::Buffer out = cl.buffer(kProbeValues * sizeof(cl_uint), "probe");
     cl::Kernel k = cl.kernel("layout_probe.cl", "layout_probe");
     cl.launch("layout_probe", k, 1, 1, out);
     cl.finish();
