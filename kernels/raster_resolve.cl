@@ -3,7 +3,7 @@
  * the plane of the pixel's triangle gives the exact position and distance, the barycentrics (of vertices 1
  * and 2, clamped to the triangle: snapping lets a covered centre lie a hair outside it), the geometric normal
  * and the shading normal interpolated from the vertex normals. Where the interpolated normal turns more than
- * 60 degrees from the geometric one (a crease the vertex normals smooth over) the geometric one is used. Both
+ * 45 degrees (VOXR_CREASE_COS) from the geometric one (a crease the vertex normals smooth over) the geometric one is used. Both
  * are then turned towards the eye (the shading normal with the geometric one's flip; if it still faces away
  * it is replaced by the geometric normal). Pixels without a triangle get VOXR_NO_TRIANGLE and zeros. in:
  * camera, visibility words, positions (float4), triangles (uint4), vertex normals (float4, xyz unit) out:
@@ -16,8 +16,6 @@
 #define WG_SIZE 256
 #endif
 
-/* cos 60 degrees: the crease rule's limit. */
-#define RESOLVE_CREASE_COS 0.5f
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_resolve(
     RenderCamera cam, __global const ulong* visibility, __global const float4* positions,
@@ -86,7 +84,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_resolv
   float3 ns = w * normals[tri.x].xyz + u * normals[tri.y].xyz + v * normals[tri.z].xyz;
   const float ns_length = length(ns);
   ns = ns_length > 0.0f ? ns / ns_length : ng;
-  if (dot(ns, ng) < RESOLVE_CREASE_COS) ns = ng;
+  if (dot(ns, ng) < VOXR_CREASE_COS) ns = ng;
   if (dot(ng, dir) > 0.0f) {
     ng = -ng;
     ns = -ns;

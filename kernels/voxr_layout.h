@@ -136,6 +136,12 @@ typedef struct RenderLight {
   float pad2;
 } RenderLight;
 
+/* The crease rule of shading normals (raster_resolve.cl and the reference alike): where the interpolated
+ * vertex normal is more than 45 degrees from the triangle's own normal, the vertex normals smooth over a
+ * crease and the triangle's normal is used, so a box's faces shade flat (its corner normals are 54.7 degrees
+ * off each face) while a tessellated sphere's stay smooth. */
+#define VOXR_CREASE_COS 0.70710678f
+
 /* A pixel that sees no triangle. */
 #define VOXR_NO_TRIANGLE 0xffffffffu
 

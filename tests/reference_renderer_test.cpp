@@ -315,7 +315,7 @@ TEST(ReferenceIntersect, KnownTriangle) {
   EXPECT_THROW(scene.intersect({0, 0, 0}, {0, 0, 0}), Error);
 }
 
-// The crease rule: at a sharp ridge the interpolated normal would lean more than 60 degrees off the face, so
+// The crease rule: at a sharp ridge the interpolated normal would lean more than 45 degrees off the face, so
 // the face's normal shades; on a gentle fold the interpolated normal is kept.
 TEST(ReferenceIntersect, CreaseRule) {
   for (const float slope : {4.0f, 0.1f}) {  // ridge faces rising at about 76 and 6 degrees
@@ -423,27 +423,6 @@ TEST(ReferenceScene, RejectsBadMaterialIds) {
   add_floor(soup);
   soup.triangles[1].w = 7;
   EXPECT_THROW(ReferenceScene(soup, test_materials()), Error);
-}
-
-// (h) Vertex normals: flat on a plane; at a box corner the angle-weighted average of the faces meeting there.
-TEST(ReferenceVertexNormals, PlaneAndBoxCorner) {
-  for (const glm::vec3& n : vertex_normals(make_plane(glm::vec2(2.0f), 3)))
-    EXPECT_TRUE(near3(glm::vec3(0, 1, 0), n));
-  const TriangleSoup box = make_box(glm::vec3(0.0f), glm::vec3(1.0f));
-  const std::vector<glm::vec3> normals = vertex_normals(box);
-  ASSERT_EQ(normals.size(), 8u);
-  // Corner 0 = (0, 0, 0): every face has two triangles there (45 + 45 degrees).
-  EXPECT_TRUE(near3(glm::normalize(glm::vec3(-1, -1, -1)), normals[0]));
-  // Corner 1 = (1, 0, 0): +x has two triangles there (45 + 45), -y and -z one each (90): the angle weights
-  // are equal per face, where weighting by triangle count or area would lean towards +x.
-  EXPECT_TRUE(near3(glm::normalize(glm::vec3(1, -1, -1)), normals[1]));
-  // A zero-area triangle adds nothing; a vertex with none gets (0, 0, 1).
-  TriangleSoup s = make_plane(glm::vec2(2.0f), 1);
-  const uint32_t lone = add_vertex(s, {5, 5, 5});
-  s.triangles.push_back({0, 0, 1, 0});
-  const std::vector<glm::vec3> n = vertex_normals(s);
-  EXPECT_TRUE(near3(glm::vec3(0, 1, 0), n[0]));
-  EXPECT_TRUE(near3(glm::vec3(0, 0, 1), n[lone]));
 }
 
 }  // namespace

@@ -522,7 +522,7 @@ TEST(Visibility, ResolveNormalsFaceTheEyeAndFollowTheCreaseRule) {
     EXPECT_NEAR(glm::length(ng), 1.0f, 1e-5f);
     EXPECT_GE(glm::dot(n, to_eye), 0.0f);
     EXPECT_GE(glm::dot(ng, to_eye), 0.0f);
-    EXPECT_GE(glm::dot(n, ng), 0.5f - 1e-5f);
+    EXPECT_GE(glm::dot(n, ng), VOXR_CREASE_COS - 1e-5f);
     if (s.triangle < sphere_tris) {
       ++sphere_hits;
       EXPECT_GT(glm::dot(n, glm::normalize(p)), 0.995f);

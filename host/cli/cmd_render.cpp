@@ -142,7 +142,6 @@ int run_render(const RenderArgs& args) {
   std::unique_ptr<ReferenceScene> reference;
   if (reference_only) {
     if (tty) fmt::print(stderr, "\r{:<60}\rtracing the reference...", "");
-    const auto build_start = Clock::now();
     reference = std::make_unique<ReferenceScene>(soup, materials);
     for (uint32_t f = 0; f < args.frames; ++f) {
       const auto frame_start = Clock::now();
@@ -154,7 +153,6 @@ int run_render(const RenderArgs& args) {
                       {"shadow", r.shadow_ms},
                       {"shade", r.shade_ms}};
     }
-    (void)build_start;
     report["device"] = "host (Embree)";
   } else {
     const auto wait_start = Clock::now();

@@ -324,10 +324,8 @@ SurfaceSample ReferenceScene::intersect(const glm::vec3& origin, const glm::vec3
   glm::vec3 shading = (1.0f - u - v) * m.normals[t.x] + u * m.normals[t.y] + v * m.normals[t.z];
   const float shading_len = glm::length(shading);
   shading = shading_len > 0.0f ? shading / shading_len : glm::vec3(0.0f);
-  // The crease rule: a vertex normal averaged over faces that meet at a sharp angle would shade a flat face
-  // round; beyond 60 degrees from the face's own normal (cos < 0.5) the face's normal is used. (A cube's
-  // corner normal is 54.7 degrees off each face, inside the limit: cube faces still shade round.)
-  if (!(glm::dot(shading, geometric) >= 0.5f)) shading = geometric;
+  // The crease rule (voxr_layout.h VOXR_CREASE_COS), as the rasterizer's resolve applies it.
+  if (!(glm::dot(shading, geometric) >= VOXR_CREASE_COS)) shading = geometric;
   if (glm::dot(geometric, d) > 0.0f) geometric = -geometric;
   if (glm::dot(shading, d) > 0.0f) shading = -shading;
   for (int c = 0; c < 3; ++c) {
