@@ -6,8 +6,8 @@ std::string_view default_scene_json() {
   // Keep identical to data/scenes/default.json (DefaultScene tests compare them).
   static constexpr std::string_view kJson = R"json({
   "materials": [
-    {"name": "glass", "kind": "dielectric", "ior": 1.5, "absorption": [0.35, 0.12, 0.05]},
-    {"name": "vase_glass", "kind": "dielectric", "ior": 1.45, "absorption": [0.6, 0.15, 0.5]},
+    {"name": "glass", "kind": "dielectric", "ior": 1.5, "absorption": [1.1, 0.35, 0.08]},
+    {"name": "vase_glass", "kind": "dielectric", "ior": 1.45, "absorption": [1.4, 0.3, 1.1]},
     {"name": "floor", "kind": "opaque", "color": [0.75, 0.75, 0.72]},
     {"name": "clay", "kind": "opaque", "color": [0.8, 0.35, 0.2]},
     {"name": "bark", "kind": "opaque", "color": [0.35, 0.22, 0.12]},
@@ -24,10 +24,10 @@ std::string_view default_scene_json() {
     {"generator": "tree", "params": {"density": 0.5, "seed": 7},
      "material": ["bark", "leaf"], "transform": {"scale": 1.8, "translate": [1.2, 0, -2.6]}}
   ],
-  "light": {"type": "point", "position": [3, 8, 5], "intensity": [100, 100, 100]},
+  "light": {"type": "point", "position": [3, 8, 5], "intensity": [75, 75, 75]},
   "camera": {"position": [0, 3.2, 8.5], "look_at": [0, 1.2, 0], "up": [0, 1, 0], "fov_deg": 45,
              "width": 512, "height": 512},
-  "environment": {"color": [0.6, 0.7, 0.8]}
+  "environment": {"color": [0.25, 0.28, 0.33]}
 }
 )json";
   return kJson;
