@@ -64,20 +64,9 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_m
   if (id >= count) return;
   const SurfaceSample s = samples[id];
   float3 result = (float3)(1.0f);
-  if (s.triangle != VOXR_NO_TRIANGLE &&
-      materials[min(s.material, material_count - 1u)].kind != VOXR_MATERIAL_DIELECTRIC) {
-    float3 p = vload3(0, s.position);
-    float3 n = vload3(0, s.geometric_normal);
-    const float3 to_light =
-        light.directional ? -vload3(0, light.direction) : normalize(vload3(0, light.position) - p);
-    if (dot(n, to_light) < 0.0f) n = -n;
-    p += n * (normal_offset * sf_column_width(&frame, p));
-    const float3 g = sf_to_grid(&frame, p);
+  float3 g;
+  if (sf_receiver(&frame, &light, &s, materials, material_count, normal_offset, &g)) {
     const int w = (int)frame.dims[0], h = (int)frame.dims[1];
-    if (!(g.x >= 0.0f && g.y >= 0.0f && g.x <= (float)w && g.y <= (float)h)) {
-      transmittance[id] = (float4)(1.0f); /* beyond every caster's columns: lit */
-      return;
-    }
     const float receiver = (g.z - bias) / (float)frame.dims[2];
     /* Texel centres: column i at x = i + 0.5; image row y = dims.y - 1 - j. */
     const float x = g.x - 0.5f, y = g.y - 0.5f;

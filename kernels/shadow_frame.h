@@ -34,6 +34,26 @@ inline float sf_column_width(const ShadowFrame* f, float3 p) {
   return z / f->inv_du;
 }
 
+/* Where receiver `s` looks its transmittance up, in grid units (both shadow lookups): pushed off its surface
+ * by normal_offset columns along the geometric normal turned to the light. Returns 0 when the sample is no
+ * receiver (no triangle, or a dielectric: shaded flat) or lies outside the grid's columns, where no caster
+ * can reach it (host/render/light_frame.h): lit either way. */
+inline int sf_receiver(const ShadowFrame* f, const RenderLight* light, const SurfaceSample* s,
+                       __global const RenderMaterial* materials, uint material_count, float normal_offset,
+                       float3* grid) {
+  if (s->triangle == VOXR_NO_TRIANGLE ||
+      materials[min(s->material, material_count - 1u)].kind == VOXR_MATERIAL_DIELECTRIC)
+    return 0;
+  float3 p = vload3(0, s->position);
+  float3 n = vload3(0, s->geometric_normal);
+  const float3 to_light =
+      light->directional ? -vload3(0, light->direction) : normalize(vload3(0, light->position) - p);
+  if (dot(n, to_light) < 0.0f) n = -n;
+  p += n * (normal_offset * sf_column_width(f, p));
+  *grid = sf_to_grid(f, p);
+  return grid->x >= 0.0f && grid->y >= 0.0f && grid->x <= (float)f->dims[0] && grid->y <= (float)f->dims[1];
+}
+
 /* Transmittance volume: one word per voxel, column-major (k fastest: a column is contiguous), RGB in 10 bits
  * each, the transmittance from the light to the far face of the voxel's slab. */
 inline uint sf_pack(float3 t) {

@@ -27,21 +27,9 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_l
   if (id >= count) return;
   const SurfaceSample s = samples[id];
   float3 t = (float3)(1.0f);
-  if (s.triangle != VOXR_NO_TRIANGLE &&
-      materials[min(s.material, material_count - 1u)].kind != VOXR_MATERIAL_DIELECTRIC) {
-    float3 p = vload3(0, s.position);
-    float3 n = vload3(0, s.geometric_normal);
-    const float3 to_light =
-        light.directional ? -vload3(0, light.direction) : normalize(vload3(0, light.position) - p);
-    if (dot(n, to_light) < 0.0f) n = -n;
-    p += n * (normal_offset * sf_column_width(&frame, p));
-    const float3 gp = sf_to_grid(&frame, p);
+  float3 gp;
+  if (sf_receiver(&frame, &light, &s, materials, material_count, normal_offset, &gp)) {
     const uint dx = frame.dims[0], dy = frame.dims[1], dz = frame.dims[2];
-    /* Outside the grid's columns no caster can reach the receiver (light_frame.h): lit. */
-    if (!(gp.x >= 0.0f && gp.y >= 0.0f && gp.x <= (float)dx && gp.y <= (float)dy)) {
-      transmittance[id] = (float4)(1.0f);
-      return;
-    }
     const float x = gp.x - 0.5f, y = gp.y - 0.5f, z = gp.z - bias;
     const float fx = floor(x), fy = floor(y);
     const float wx = x - fx, wy = y - fy;

@@ -8,8 +8,8 @@
 #include <map>
 
 #include "cl/program_cache.h"
-#include "voxr_layout.h"
 #include "test_support.h"
+#include "voxr_layout.h"
 
 namespace voxr {
 namespace {

@@ -11,16 +11,6 @@
 namespace voxr {
 namespace {
 
-void add_quad(TriangleSoup& soup, float height, float lo, float hi, uint32_t material) {
-  const uint32_t b = uint32_t(soup.positions.size());
-  soup.positions.push_back({lo, height, lo, 1});
-  soup.positions.push_back({hi, height, lo, 1});
-  soup.positions.push_back({hi, height, hi, 1});
-  soup.positions.push_back({lo, height, hi, 1});
-  soup.triangles.push_back({b, b + 2, b + 1, material});
-  soup.triangles.push_back({b, b + 3, b + 2, material});
-}
-
 RenderLight directional(glm::vec3 d) {
   Light l;
   l.type = "directional";
@@ -37,8 +27,8 @@ RenderLight point(glm::vec3 p) {
 
 TEST(LightFrame, AFloorUnderEverythingCastsNothingSoTheGridFitsTheLeaf) {
   TriangleSoup soup;
-  add_quad(soup, 0.0f, -10.0f, 10.0f, 0);  // a 20 x 20 floor
-  add_quad(soup, 1.0f, -0.5f, 0.5f, 1);    // a 1 x 1 leaf
+  test::add_square(soup, 0.0f, -10.0f, 10.0f, 0);  // a 20 x 20 floor
+  test::add_square(soup, 1.0f, -0.5f, 0.5f, 1);    // a 1 x 1 leaf
   const LightFrame f = fit_light_frame(directional({0, -1, 0}), soup.bounds(), soup, 64);
   EXPECT_FALSE(f.projective());
   // 62 columns over the leaf's metre and one of margin each side: the floor's 20 m would need 0.32 m voxels.
@@ -55,8 +45,8 @@ TEST(LightFrame, AFloorUnderEverythingCastsNothingSoTheGridFitsTheLeaf) {
 
 TEST(LightFrame, PointLightFrustumIsProjectiveWithDepthSlices) {
   TriangleSoup soup;
-  add_quad(soup, 0.0f, -10.0f, 10.0f, 0);
-  add_quad(soup, 1.0f, -0.5f, 0.5f, 1);
+  test::add_square(soup, 0.0f, -10.0f, 10.0f, 0);
+  test::add_square(soup, 1.0f, -0.5f, 0.5f, 1);
   const LightFrame f = fit_light_frame(point({0, 5, 0}), soup.bounds(), soup, 64);
   ASSERT_TRUE(f.projective());
   EXPECT_EQ(f.grid.dims.z, 64u);
@@ -76,8 +66,8 @@ TEST(LightFrame, PointLightFrustumIsProjectiveWithDepthSlices) {
 
 TEST(LightFrame, TrianglesBehindAPointLightAreClippedAway) {
   TriangleSoup soup;
-  add_quad(soup, 0.0f, -2.0f, 2.0f, 0);
-  add_quad(soup, 1.0f, -0.5f, 0.5f, 1);
+  test::add_square(soup, 0.0f, -2.0f, 2.0f, 0);
+  test::add_square(soup, 1.0f, -0.5f, 0.5f, 1);
   // A wall through the light's plane: half of it behind the light.
   const uint32_t b = uint32_t(soup.positions.size());
   soup.positions.push_back({1.0f, -1.0f, -1.0f, 1});
@@ -95,8 +85,8 @@ TEST(LightFrame, TrianglesBehindAPointLightAreClippedAway) {
 
 TEST(LightFrame, APointLightAmongTheReceiversIsAClearError) {
   TriangleSoup soup;
-  add_quad(soup, 0.0f, -2.0f, 2.0f, 0);
-  add_quad(soup, 3.0f, -2.0f, 2.0f, 0);
+  test::add_square(soup, 0.0f, -2.0f, 2.0f, 0);
+  test::add_square(soup, 3.0f, -2.0f, 2.0f, 0);
   try {
     fit_light_frame(point({0, 1, 0}), soup.bounds(), soup, 32);
     FAIL() << "expected an error";

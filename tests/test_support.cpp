@@ -111,4 +111,14 @@ std::string mesh_path(const std::string& name) {
   return std::filesystem::exists(p) ? p.string() : std::string();
 }
 
+void add_square(TriangleSoup& soup, float height, float lo, float hi, uint32_t material) {
+  const uint32_t b = uint32_t(soup.positions.size());
+  soup.positions.push_back({lo, height, lo, 1});
+  soup.positions.push_back({hi, height, lo, 1});
+  soup.positions.push_back({hi, height, hi, 1});
+  soup.positions.push_back({lo, height, hi, 1});
+  soup.triangles.push_back({b, b + 2, b + 1, material});
+  soup.triangles.push_back({b, b + 3, b + 2, material});
+}
+
 }  // namespace voxr::test

@@ -40,6 +40,10 @@ GridSpec unit_grid(glm::uvec3 dims);
 // Axis-aligned box as 12 triangles (outward winding).
 TriangleSoup box_soup(glm::vec3 lo, glm::vec3 hi, uint32_t material = 0);
 
+// Appends the square [lo, hi] x [lo, hi] in the plane y = height (x, z), two triangles sharing a diagonal,
+// facing +y.
+void add_square(TriangleSoup& soup, float height, float lo, float hi, uint32_t material);
+
 // A fresh folder per test (or per object), removed afterwards.
 class TempDir {
  public:

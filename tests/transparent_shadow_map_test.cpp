@@ -15,17 +15,6 @@
 namespace voxr {
 namespace {
 
-// Quad in the plane y = height over [lo, hi] in x and z, two triangles sharing a diagonal.
-void add_quad(TriangleSoup& soup, float height, float lo, float hi, uint32_t material) {
-  const uint32_t b = uint32_t(soup.positions.size());
-  soup.positions.push_back({lo, height, lo, 1});
-  soup.positions.push_back({hi, height, lo, 1});
-  soup.positions.push_back({hi, height, hi, 1});
-  soup.positions.push_back({lo, height, hi, 1});
-  soup.triangles.push_back({b, b + 2, b + 1, material});
-  soup.triangles.push_back({b, b + 3, b + 2, material});
-}
-
 struct ShadowCase {
   TriangleSoup soup;
   std::vector<Material> materials;
@@ -81,8 +70,8 @@ ShadowCase leaf_over_floor(const Light& light) {
   Material floor;
   floor.name = "floor";
   c.materials = {floor, sheet({0.5f, 0.7f, 0.9f})};
-  add_quad(c.soup, 0.0f, -2.0f, 2.0f, 0);
-  add_quad(c.soup, 1.0f, -0.5f, 0.5f, 1);
+  test::add_square(c.soup, 0.0f, -2.0f, 2.0f, 0);
+  test::add_square(c.soup, 1.0f, -0.5f, 0.5f, 1);
   c.light = light;
   return c;
 }
@@ -126,7 +115,7 @@ TEST(TransparentShadowMap, TwoLeavesInOneVoxelCountTwice) {
   light.type = "directional";
   light.direction = {0.0f, -1.0f, 0.0f};
   ShadowCase c = leaf_over_floor(light);
-  add_quad(c.soup, 1.001f, -0.5f, 0.5f, 1);  // a second leaf within the first one's voxels
+  test::add_square(c.soup, 1.001f, -0.5f, 0.5f, 1);  // a second leaf within the first one's voxels
   const auto t = shadow_at(c, {{0.1f, 0, 0.1f}}, 64, ShadowMapOptions{});
   expect_near3(t[0], {0.25f, 0.49f, 0.81f}, 2e-3f, "under both leaves");
 }
@@ -169,7 +158,7 @@ TEST(TransparentShadowMap, GlassSlabAbsorbsAlongItsThicknessAndOpaqueBlocks) {
   glass.absorption = {0.4f, 0.8f, 1.6f};
   wall.name = "wall";
   c.materials = {floor, glass, wall};
-  add_quad(c.soup, 0.0f, -2.0f, 2.0f, 0);
+  test::add_square(c.soup, 0.0f, -2.0f, 2.0f, 0);
   c.soup.append(test::box_soup({-1.5f, 0.5f, -0.5f}, {-0.5f, 1.0f, 0.5f}), glm::mat4(1.0f), 1);  // d = 0.5
   c.soup.append(test::box_soup({0.5f, 0.5f, -0.5f}, {1.5f, 1.0f, 0.5f}), glm::mat4(1.0f), 2);
   c.light = light;
