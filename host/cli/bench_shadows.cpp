@@ -12,6 +12,7 @@
 
 #include "bench/median.h"
 #include "cl/cl_runtime.h"
+#include "cli/commands.h"
 #include "cli/process.h"
 #include "core/clock.h"
 #include "core/default_scene.h"
@@ -30,7 +31,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Debian's python3, where python3-matplotlib is installed (a pyenv or venv python3 first on PATH may lack it).
+// Debian's python3, where python3-matplotlib is installed (a pyenv or venv python3 first on PATH may lack
+// it).
 constexpr const char* kSystemPython = "/usr/bin/python3";
 
 struct MethodCase {
@@ -246,12 +248,41 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
   fmt::print("wrote {}.csv\nwrote {}.md\n", args.out, args.out);
   const fs::path script = fs::path(VOXR_SOURCE_DIR) / "bench" / "shadow_charts.py";
   if (fs::exists(script)) {
-    const int status =
-        run_program({kSystemPython, script.string(), args.out + ".csv", args.out + "-charts"});
+    const int status = run_program({kSystemPython, script.string(), args.out + ".csv", args.out + "-charts"});
     if (status != 0)
       fmt::print(stderr, "voxr: warning: the charts were not drawn ({} failed)\n", script.string());
   }
   return 0;
+}
+
+Command add_bench_shadows(CLI::App& bench) {
+  auto shadows = std::make_shared<BenchShadowsArgs>();
+  CLI::App* sh = bench.add_subcommand(
+      "shadows", "Shadow methods x shadow resolutions x scenes: frame time against error vs Embree");
+  sh->add_option("--scenes", shadows->scenes, "scene files (default: the built-in scene)")
+      ->delimiter(',')
+      ->capture_default_str();
+  sh->add_option("--res", shadows->resolutions, "shadow resolutions")
+      ->delimiter(',')
+      ->check(CLI::Range(2u, 4096u))
+      ->capture_default_str();
+  sh->add_option("--methods", shadows->methods, "voxel-center, voxel-conservative, uniform, filter, opaque")
+      ->delimiter(',')
+      ->capture_default_str();
+  sh->add_option("--size", shadows->size, "image WIDTHxHEIGHT")->capture_default_str();
+  sh->add_option("--device", shadows->device, "OpenCL device P:D or name substring");
+  sh->add_option("--out", shadows->out, "output prefix: PREFIX.csv, PREFIX.md, PREFIX-charts/")
+      ->capture_default_str();
+  sh->add_option("--repeat", shadows->repeat, "timed frames per case")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  sh->add_option("--warmup", shadows->warmup, "untimed frames first")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  sh->add_option("--fresh", shadows->fresh, "fresh `voxr render` processes per scene (0: none)")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  return {sh, [shadows] { return run_bench_shadows(*shadows); }};
 }
 
 }  // namespace voxr::cli

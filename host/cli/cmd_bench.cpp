@@ -11,7 +11,6 @@
 #include "bench/table1.h"
 #include "bench/voxelize_cases.h"
 #include "cl/cl_runtime.h"
-#include "cli/bench_shadows.h"
 #include "cli/bench_voxelize.h"
 #include "cli/commands.h"
 #include "cli/openvdb_plugin.h"
@@ -169,34 +168,9 @@ Command add_bench(CLI::App& app) {
   so->add_option("--device", solid->device, "OpenCL device P:D or name substring");
   so->add_option("--out", solid->out, "output prefix: PREFIX.csv and PREFIX.md")->capture_default_str();
   so->add_option("--repeat", solid->options.repeat, "timed runs per case")->check(CLI::Range(1, 1000));
-  auto shadows = std::make_shared<BenchShadowsArgs>();
-  CLI::App* sh = sub->add_subcommand(
-      "shadows", "Shadow methods x shadow resolutions x scenes: frame time against error vs Embree");
-  sh->add_option("--scenes", shadows->scenes, "scene files (default: the built-in scene)")
-      ->delimiter(',')
-      ->capture_default_str();
-  sh->add_option("--res", shadows->resolutions, "shadow resolutions")
-      ->delimiter(',')
-      ->check(CLI::Range(2u, 4096u))
-      ->capture_default_str();
-  sh->add_option("--methods", shadows->methods, "voxel-center, voxel-conservative, uniform, filter, opaque")
-      ->delimiter(',')
-      ->capture_default_str();
-  sh->add_option("--size", shadows->size, "image WIDTHxHEIGHT")->capture_default_str();
-  sh->add_option("--device", shadows->device, "OpenCL device P:D or name substring");
-  sh->add_option("--out", shadows->out, "output prefix: PREFIX.csv, PREFIX.md, PREFIX-charts/")
-      ->capture_default_str();
-  sh->add_option("--repeat", shadows->repeat, "timed frames per case")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
-  sh->add_option("--warmup", shadows->warmup, "untimed frames first")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
-  sh->add_option("--fresh", shadows->fresh, "fresh `voxr render` processes per scene (0: none)")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
-  return {sub, [args, vox, table, t1, solid, so, shadows, sh] {
-            if (sh->parsed()) return run_bench_shadows(*shadows);
+  const Command shadows = add_bench_shadows(*sub);
+  return {sub, [args, vox, table, t1, solid, so, shadows] {
+            if (shadows.app->parsed()) return shadows.run();
             if (vox->parsed()) return run_bench_voxelize(*args);
             if (t1->parsed()) return run_bench_table1(*table);
             if (so->parsed()) return run_bench_solid(*solid);

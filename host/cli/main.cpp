@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/process.h"
 #include "core/error.h"
 
 namespace {
@@ -55,8 +56,23 @@ int parse_error_exit(const CLI::App& app, const CLI::ParseError& e) {
   return kExitUsage;
 }
 
+// Rendering links OpenImageIO and Embree, some 200 shared libraries that every process would load at start:
+// `voxr voxelize` would pay ~100 ms for nothing. So `voxr` forwards the rendering commands to `voxr-render`
+// beside it (the same CLI built with them: VOXR_CLI_RENDER) by exec, before any parsing.
+#ifndef VOXR_CLI_RENDER
+bool renders(int argc, char** argv) {
+  const std::string first = argc > 1 ? argv[1] : "", second = argc > 2 ? argv[2] : "";
+  return first == "render" || (first == "bench" && second == "shadows");
+}
+#endif
+
 int run(int argc, char** argv) {
+#ifndef VOXR_CLI_RENDER
+  if (renders(argc, argv))
+    voxr::cli::exec_program(voxr::cli::executable_folder() / "voxr-render", argc, argv);
+#endif
   CLI::App app{"voxr: voxelize triangle scenes with OpenCL kernels and render effects from the voxels"};
+  app.name("voxr");  // voxr-render too: its messages and usage speak of the command the user typed
   app.require_subcommand(1);
   app.set_version_flag("--version", "voxr 0.1.0");
   const voxr::cli::Command commands[] = {voxr::cli::add_devices(app), voxr::cli::add_voxelize(app),

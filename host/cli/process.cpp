@@ -35,4 +35,14 @@ int run_program(std::vector<std::string> argv) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 
+void exec_program(const std::filesystem::path& program, int argc, char** argv) {
+  std::string path = program.string();
+  std::vector<char*> pointers{path.data()};
+  for (int i = 1; i < argc; ++i) pointers.push_back(argv[i]);
+  pointers.push_back(nullptr);
+  std::fflush(stdout);
+  execv(path.c_str(), pointers.data());
+  fail("cannot start {} (build the voxr-render target beside voxr)", path);
+}
+
 }  // namespace voxr::cli

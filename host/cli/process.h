@@ -15,4 +15,8 @@ std::filesystem::path executable_folder();
 // exit status (1 when it did not exit normally). Throws voxr::Error when it cannot be started.
 int run_program(std::vector<std::string> argv);
 
+// Replaces this process with `program` given this process's arguments (argv[0] becomes `program`). Returns
+// only by throwing voxr::Error when `program` cannot be started.
+[[noreturn]] void exec_program(const std::filesystem::path& program, int argc, char** argv);
+
 }  // namespace voxr::cli

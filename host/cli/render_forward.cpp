@@ -1,0 +1,30 @@
+// What `voxr` (without VOXR_CLI_RENDER) registers for the rendering commands: their names and summaries for
+// --help. main.cpp hands every `voxr render` and `voxr bench shadows` to voxr-render before parsing, so these
+// are never run.
+#include "cli/commands.h"
+#include "core/error.h"
+
+namespace voxr::cli {
+
+namespace {
+
+int forwarded() {
+  throw InternalError("a rendering command reached voxr instead of voxr-render");
+}
+
+}  // namespace
+
+Command add_render(CLI::App& app) {
+  CLI::App* sub = app.add_subcommand("render", "Render a scene with transparent shadows (.png or .exr)");
+  sub->allow_extras();
+  return {sub, forwarded};
+}
+
+Command add_bench_shadows(CLI::App& bench) {
+  CLI::App* sub = bench.add_subcommand(
+      "shadows", "Shadow methods x shadow resolutions x scenes: frame time against error vs Embree");
+  sub->allow_extras();
+  return {sub, forwarded};
+}
+
+}  // namespace voxr::cli
