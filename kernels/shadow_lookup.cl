@@ -9,20 +9,26 @@
 #define SHADOW_GROUP 64
 #endif
 
+/* The packed transmittance at the far face of slab k of column c (shadow_transmittance.cl). */
+inline uint slab_value(__global const uint* volume, __global const uint2* tails, ulong c, uint dz, uint k) {
+  const uint2 tail = tails[c];
+  return k < tail.x ? volume[c * dz + k] : tail.y;
+}
+
 /* Transmittance of column `c` at depth z (grid units). */
-inline float3 column_at(__global const uint* volume, ulong c, uint dz, float z) {
+inline float3 column_at(__global const uint* volume, __global const uint2* tails, ulong c, uint dz, float z) {
   if (z <= 0.0f) return (float3)(1.0f);
   const float kf = floor(z);
-  if (kf >= (float)dz) return sf_unpack(volume[c * dz + dz - 1]);
+  if (kf >= (float)dz) return sf_unpack(tails[c].y);
   const uint k = (uint)kf;
-  const float3 before = k > 0 ? sf_unpack(volume[c * dz + k - 1]) : (float3)(1.0f);
-  return mix(before, sf_unpack(volume[c * dz + k]), z - kf);
+  const float3 before = k > 0 ? sf_unpack(slab_value(volume, tails, c, dz, k - 1)) : (float3)(1.0f);
+  return mix(before, sf_unpack(slab_value(volume, tails, c, dz, k)), z - kf);
 }
 
 __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_lookup(
     __global const SurfaceSample* samples, uint count, __global const RenderMaterial* materials,
-    uint material_count, RenderLight light, ShadowFrame frame, __global const uint* volume, float bias,
-    float normal_offset, __global float4* transmittance) {
+    uint material_count, RenderLight light, ShadowFrame frame, __global const uint* volume,
+    __global const uint2* tails, float bias, float normal_offset, __global float4* transmittance) {
   const uint id = get_global_id(0);
   if (id >= count) return;
   const SurfaceSample s = samples[id];
@@ -35,10 +41,10 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_l
     const float wx = x - fx, wy = y - fy;
     const int i0 = clamp((int)fx, 0, (int)dx - 1), i1 = clamp((int)fx + 1, 0, (int)dx - 1);
     const int j0 = clamp((int)fy, 0, (int)dy - 1), j1 = clamp((int)fy + 1, 0, (int)dy - 1);
-    const float3 a = column_at(volume, (ulong)j0 * dx + i0, dz, z),
-                 b = column_at(volume, (ulong)j0 * dx + i1, dz, z);
-    const float3 c = column_at(volume, (ulong)j1 * dx + i0, dz, z),
-                 d = column_at(volume, (ulong)j1 * dx + i1, dz, z);
+    const float3 a = column_at(volume, tails, (ulong)j0 * dx + i0, dz, z),
+                 b = column_at(volume, tails, (ulong)j0 * dx + i1, dz, z);
+    const float3 c = column_at(volume, tails, (ulong)j1 * dx + i0, dz, z),
+                 d = column_at(volume, tails, (ulong)j1 * dx + i1, dz, z);
     t = mix(mix(a, b, wx), mix(c, d, wx), wy);
   }
   transmittance[id] = (float4)(t, 1.0f);

@@ -1,6 +1,7 @@
 /* shadow_transmittance.cl — the transparent shadow map's prefix pass (Chang & Lai, TR 1688 §4.1; PG 2011
  * §4): walk each column of the light's grid from the light outwards, summing every voxel's optical depth,
- * and store the transmittance at the far face of each slab (shadow_frame.h's packing).
+ * and store the transmittance at the far face of each slab (shadow_frame.h's packing) up to the column's last
+ * change, and the value from there on (`tails`: slabs stored, value).
  *
  * Per-voxel optical depth (method SHADOW_VOXEL), from the write count and the writers' material (the largest
  * material id among them, grid channel `material`):
@@ -22,7 +23,8 @@
 
 __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_transmittance(
     VOXR_GRID_VIEW_PARAMS, ShadowFrame frame, __global const RenderMaterial* materials, uint material_count,
-    uint method, float uniform_r, float uniform_g, float uniform_b, __global uint* volume) {
+    uint method, float uniform_r, float uniform_g, float uniform_b, __global uint* volume,
+    __global uint2* tails) {
   const GridView g = VOXR_GRID_VIEW();
   const uint column = get_global_id(0);
   const uint dx = frame.dims[0], dy = frame.dims[1], dz = frame.dims[2];
@@ -33,6 +35,7 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_t
   float3 sigma = (float3)(0.0f); /* absorption of the dielectric the column is inside, 0 outside */
   int inside = 0;
   uint packed = sf_pack((float3)(1.0f)); /* exp(-tau), packed: recomputed only where tau changes */
+  uint written = 0;                      /* slabs stored so far; the rest of the column is `packed` */
   const ulong slab_voxels = (ulong)dx * dy;
   ulong v = gv_linear(&g, (int)i, (int)j, 0);
   uint k = 0;
@@ -47,7 +50,12 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_t
         const uint r = gv_rank(&g, v);
         const uint count = gv_count(&g, r);
         const RenderMaterial mat = materials[min(gv_material(&g, r), material_count - 1u)];
-        if (mat.kind == VOXR_MATERIAL_OPAQUE) break;
+        if (mat.kind == VOXR_MATERIAL_OPAQUE) {
+          /* Blocks everything from its slab on: the column's tail is 0 from slab k. */
+          for (; written < k; ++written) out[written] = packed;
+          packed = 0u;
+          break;
+        }
         if (mat.kind == VOXR_MATERIAL_SHEET) {
           const float3 t = max((float3)(mat.transmittance[0], mat.transmittance[1], mat.transmittance[2]),
                                (float3)(1e-30f));
@@ -67,9 +75,14 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_t
         }
       }
     }
-    if (changed) packed = sf_pack(exp(-tau));
-    out[k] = packed;
+    if (changed) {
+      /* Slabs since the last change keep the previous value; this one gets the new. */
+      for (; written < k; ++written) out[written] = packed;
+      packed = sf_pack(exp(-tau));
+      out[k] = packed;
+      written = k + 1;
+    }
   }
-  /* An opaque voxel blocks everything from its slab on. */
-  for (; k < dz; ++k) out[k] = 0u;
+  /* Most columns end in empty space (below the casters): their tail is stored once, not slab by slab. */
+  tails[column] = (uint2)(written, packed);
 }

@@ -56,8 +56,10 @@ void TransparentShadowMap::build(const DeviceMesh& light_mesh, const LightFrame&
   cl::Buffer& volume = volume_.ensure(cl_, columns * frame.grid.dims.z * 4, "transmittance volume");
   cl::Kernel kernel = cl_.kernel("shadow_transmittance.cl", "shadow_transmittance", channel_defines());
   const uint32_t method = options.method == ShadowMethod::kUniform ? kShadowUniform : kShadowVoxel;
+  cl::Buffer& tails = tails_.ensure(cl_, columns * 8, "transmittance volume tails");
   cl_.launch("shadow_transmittance", kernel, columns, kGroup, grid_.view_args(cl_), frame.params, materials,
-             cl_uint(material_count), cl_uint(method), uniform_tau.x, uniform_tau.y, uniform_tau.z, volume);
+             cl_uint(material_count), cl_uint(method), uniform_tau.x, uniform_tau.y, uniform_tau.z, volume,
+             tails);
 }
 
 void TransparentShadowMap::lookup(const cl::Buffer& samples, uint32_t count, const cl::Buffer& materials,
@@ -65,12 +67,12 @@ void TransparentShadowMap::lookup(const cl::Buffer& samples, uint32_t count, con
                                   const ShadowMapOptions& options, cl::Buffer& transmittance) {
   cl::Kernel kernel = cl_.kernel("shadow_lookup.cl", "shadow_lookup");
   cl_.launch("shadow_lookup", kernel, count, kGroup, samples, cl_uint(count), materials,
-             cl_uint(material_count), light, frame_.params, volume_.buffer, options.bias,
+             cl_uint(material_count), light, frame_.params, volume_.buffer, tails_.buffer, options.bias,
              options.normal_offset, transmittance);
 }
 
 uint64_t TransparentShadowMap::device_bytes() const {
-  return grid_.device_bytes() + volume_.bytes;
+  return grid_.device_bytes() + volume_.bytes + tails_.bytes;
 }
 
 glm::vec3 uniform_optical_depth(const TriangleSoup& soup, const std::vector<Material>& materials,

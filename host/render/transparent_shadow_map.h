@@ -64,7 +64,7 @@ class TransparentShadowMap {
   ClRuntime& cl_;
   Voxelizer voxelizer_;
   DeviceVoxelGrid grid_;
-  GrowingBuffer volume_;
+  GrowingBuffer volume_, tails_;  // transmittance per slab up to each column's last change; the rest
   LightFrame frame_;
 };
 
