@@ -20,6 +20,7 @@
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
 #include "cli/parse_args.h"
+#include "cli/prepared_runtime.h"
 #include "core/clock.h"
 #include "core/default_scene.h"
 #include "core/file_extension.h"
@@ -72,23 +73,6 @@ std::filesystem::path beside(const std::string& output, const std::string& tag) 
   return p.parent_path() / (p.stem().string() + "." + tag + p.extension().string());
 }
 
-struct Prepared {
-  std::unique_ptr<ClRuntime> cl;
-  std::unique_ptr<FrameRenderer> renderer;
-  double runtime_ms = 0.0, programs_ms = 0.0;
-};
-
-Prepared prepare(const std::string& device, const RenderOptions& options) {
-  const auto start = Clock::now();
-  Prepared p;
-  p.cl = std::make_unique<ClRuntime>(device);
-  p.runtime_ms = ms_since(start);
-  p.renderer = std::make_unique<FrameRenderer>(*p.cl);
-  p.renderer->prepare(options);
-  p.programs_ms = p.cl->build_ms();
-  return p;
-}
-
 int run_render(const RenderArgs& args) {
   const auto process_start = Clock::now();
   RenderOptions options;
@@ -112,8 +96,8 @@ int run_render(const RenderArgs& args) {
   const bool reference_only = options.shadows == ShadowMethod::kReference;
   const bool tty = isatty(fileno(stderr)) && !args.quiet;
 
-  std::future<Prepared> background;
-  if (!reference_only) background = std::async(std::launch::async, prepare, args.device, options);
+  std::future<PreparedRuntime<FrameRenderer>> background;
+  if (!reference_only) background = prepare_in_background<FrameRenderer>(args.device, options);
   const auto load_start = Clock::now();
   if (tty) fmt::print(stderr, "\rreading {}...", args.input.empty() ? "the default scene" : args.input);
   Scene scene = args.input.empty() ? default_scene() : load_input(args.input);
@@ -156,12 +140,12 @@ int run_render(const RenderArgs& args) {
     report["device"] = "host (Embree)";
   } else {
     const auto wait_start = Clock::now();
-    Prepared prepared = background.get();
+    PreparedRuntime<FrameRenderer> prepared = background.get();
     const double wait_ms = ms_since(wait_start);
     if (tty) fmt::print(stderr, "\r{:<60}\rrendering...", "");
-    prepared.renderer->set_scene(soup, materials);
+    prepared.engine->set_scene(soup, materials);
     for (uint32_t f = 0; f < args.frames; ++f) {
-      RenderedFrame frame = prepared.renderer->render(light, camera, options, {}, &stats);
+      RenderedFrame frame = prepared.engine->render(light, camera, options, {}, &stats);
       frame_ms.push_back(stats.frame_ms);
       image = std::move(frame.image);
       samples = std::move(frame.samples);

@@ -18,6 +18,7 @@
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
 #include "cli/parse_args.h"
+#include "cli/prepared_runtime.h"
 #include "cli/process.h"
 #include "core/clock.h"
 #include "core/default_scene.h"
@@ -144,24 +145,6 @@ nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const 
   return report;
 }
 
-// The OpenCL runtime with the run's programs built, made on a second thread.
-struct Prepared {
-  std::unique_ptr<ClRuntime> cl;
-  std::unique_ptr<Voxelizer> voxelizer;
-  double runtime_ms = 0.0, programs_ms = 0.0;
-};
-
-Prepared prepare(const std::string& device, const VoxelizeOptions& options) {
-  const auto start = Clock::now();
-  Prepared p;
-  p.cl = std::make_unique<ClRuntime>(device);
-  p.runtime_ms = ms_since(start);
-  p.voxelizer = std::make_unique<Voxelizer>(*p.cl);
-  p.voxelizer->prepare(options);
-  p.programs_ms = p.cl->build_ms();
-  return p;
-}
-
 int run_voxelize(const VoxelizeArgs& args) {
   const auto process_start = Clock::now();
   if (args.res && !args.dims.empty()) fail("--res and --dims are exclusive; give one");
@@ -181,7 +164,7 @@ int run_voxelize(const VoxelizeArgs& args) {
       fail("{}: cannot open the file for reading", args.input);
   }
   // The device and the programs in the background while the input is read.
-  std::future<Prepared> background = std::async(std::launch::async, prepare, args.device, options);
+  auto background = prepare_in_background<Voxelizer>(args.device, options);
   Phases phases;
   auto load_start = Clock::now();
   if (tty) fmt::print(stderr, "\rreading {}...", args.input.empty() ? "the default scene" : args.input);
@@ -232,12 +215,12 @@ int run_voxelize(const VoxelizeArgs& args) {
   phases.load_ms = ms_since(load_start);
 
   const auto wait_start = Clock::now();
-  Prepared prepared = background.get();
+  PreparedRuntime<Voxelizer> prepared = background.get();
   phases.wait_ms = ms_since(wait_start);
   phases.runtime_ms = prepared.runtime_ms;
   phases.programs_ms = prepared.programs_ms;
   ClRuntime& cl = *prepared.cl;
-  Voxelizer& voxelizer = *prepared.voxelizer;
+  Voxelizer& voxelizer = *prepared.engine;
   if (refit) voxelizer.prepare(options);
 
   VoxelizeStats stats;
