@@ -3,11 +3,11 @@
  * the plane of the pixel's triangle gives the exact position and distance, the barycentrics (of vertices 1
  * and 2, clamped to the triangle: snapping lets a covered centre lie a hair outside it), the geometric normal
  * and the shading normal interpolated from the vertex normals. Where the interpolated normal turns more than
- * 45 degrees (VOXR_CREASE_COS) from the geometric one (a crease the vertex normals smooth over) the geometric one is used. Both
- * are then turned towards the eye (the shading normal with the geometric one's flip; if it still faces away
- * it is replaced by the geometric normal). Pixels without a triangle get VOXR_NO_TRIANGLE and zeros. in:
- * camera, visibility words, positions (float4), triangles (uint4), vertex normals (float4, xyz unit) out:
- * samples[y * width + x] shape: one work item per pixel. */
+ * 45 degrees (VOXR_CREASE_COS) from the geometric one (a crease the vertex normals smooth over) the geometric
+ * one is used. Both are then turned towards the eye (the shading normal with the geometric one's flip; if it
+ * still faces away it is replaced by the geometric normal). Pixels without a triangle get VOXR_NO_TRIANGLE
+ * and zeros. in: camera, visibility words, positions (float4), triangles (uint4), vertex normals (float4, xyz
+ * unit) out: samples[y * width + x] shape: one work item per pixel. */
 #include "voxr_layout.h"
 
 #pragma OPENCL FP_CONTRACT OFF
@@ -15,7 +15,6 @@
 #ifndef WG_SIZE
 #define WG_SIZE 256
 #endif
-
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_resolve(
     RenderCamera cam, __global const ulong* visibility, __global const float4* positions,

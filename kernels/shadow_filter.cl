@@ -27,15 +27,23 @@ inline float light_distance(const ShadowFrame* f, uint x, uint y, float z_ndc) {
 }
 
 __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_filter_accumulate(
-    ShadowFrame frame, __global const RasterPrim* prims, __global const RasterRecord* records,
-    uint record_count, __global const uint4* triangles, __global const RenderMaterial* materials,
-    uint material_count, __global int* tau) {
+    ShadowFrame frame, RenderLight light, __global const RasterPrim* prims,
+    __global const RasterRecord* records, uint record_count, __global const float4* positions,
+    __global const uint4* triangles, __global const RenderMaterial* materials, uint material_count,
+    __global int* tau) {
   const uint gid = get_global_id(0);
   if (gid >= record_count) return;
   const RasterRecord rec = records[gid];
   __global const RasterPrim* prim = prims + rec.triangle;
   const uint width = frame.dims[0], height = frame.dims[1];
-  const RenderMaterial m = materials[min(triangles[rec.triangle].w, material_count - 1u)];
+  const uint4 tri = triangles[rec.triangle];
+  const RenderMaterial m = materials[min(tri.w, material_count - 1u)];
+  /* A dielectric face the light sees from outside is entered, the others left (outward-wound closed meshes):
+   * decided from the geometry, not from the image's winding, which depends on the light frame's handedness.
+   */
+  const float3 a = positions[tri.x].xyz, b = positions[tri.y].xyz, c = positions[tri.z].xyz;
+  const float3 to_light = light.directional ? -vload3(0, light.direction) : vload3(0, light.position) - a;
+  const float sign = dot(cross(b - a, c - a), to_light) > 0.0f ? -1.0f : 1.0f;
   ulong mask = raster_tile_mask(prim, rec.tile, width, height);
   uint x, y;
   while (raster_next_pixel(&mask, rec.tile, &x, &y)) {
@@ -43,9 +51,7 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_f
     if (m.kind == VOXR_MATERIAL_SHEET) {
       add = -log(max((float3)(m.transmittance[0], m.transmittance[1], m.transmittance[2]), (float3)(1e-30f)));
     } else {
-      /* Faces whose front the light sees are entered, the others left (outward-wound closed meshes). */
       const float d = light_distance(&frame, x, y, raster_depth_at(prim, x, y, width, height));
-      const float sign = (prim->flags & VOXR_PRIM_BACK) ? 1.0f : -1.0f;
       add = sign * d * (float3)(m.absorption[0], m.absorption[1], m.absorption[2]);
     }
     const int3 q = convert_int3_rte(clamp(add * FILTER_ONE, -1.0e9f, 1.0e9f));

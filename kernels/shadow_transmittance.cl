@@ -23,7 +23,7 @@
 
 __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_transmittance(
     VOXR_GRID_VIEW_PARAMS, ShadowFrame frame, __global const RenderMaterial* materials, uint material_count,
-    uint method, float uniform_r, float uniform_g, float uniform_b, __global uint* volume,
+    uint method, uint conservative, float uniform_r, float uniform_g, float uniform_b, __global uint* volume,
     __global uint2* tails) {
   const GridView g = VOXR_GRID_VIEW();
   const uint column = get_global_id(0);
@@ -39,40 +39,62 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_t
   const ulong slab_voxels = (ulong)dx * dy;
   ulong v = gv_linear(&g, (int)i, (int)j, 0);
   uint k = 0;
+  int in_run = 0; /* conservative: inside a run of dielectric voxels along the column */
+  float3 run_absorption = (float3)(0.0f);
   for (; k < dz; ++k, v += slab_voxels) {
-    int changed = inside;
-    if (inside) tau += sigma * sf_slab_length(&frame, i, j, k);
-    if (gv_occupied(&g, v)) {
+    const int occupied = gv_occupied(&g, v);
+    uint count = 0;
+    int kind = -1;
+    RenderMaterial mat;
+    if (occupied && method != SHADOW_UNIFORM) {
+      const uint r = gv_rank(&g, v);
+      count = gv_count(&g, r);
+      mat = materials[min(gv_material(&g, r), material_count - 1u)];
+      kind = (int)mat.kind;
+    }
+    int changed = 0;
+    if (in_run && kind != VOXR_MATERIAL_DIELECTRIC) {
+      /* Conservative mode writes one crossing into several voxels of a column, and a voxel near an edge
+       * between two triangles of one surface twice: counts cannot tell crossings apart. A run of dielectric
+       * voxels is taken as one boundary (a closed dielectric thinner than about two voxels merges its two
+       * faces into one run, and its shadow is then wrong). */
+      inside = !inside;
+      sigma = inside ? run_absorption : (float3)(0.0f);
+      in_run = 0;
+      changed = 1;
+    }
+    if (inside) {
+      tau += sigma * sf_slab_length(&frame, i, j, k);
+      changed = 1;
+    }
+    if (occupied) {
       changed = 1;
       if (method == SHADOW_UNIFORM) {
         tau += (float3)(uniform_r, uniform_g, uniform_b);
-      } else {
-        const uint r = gv_rank(&g, v);
-        const uint count = gv_count(&g, r);
-        const RenderMaterial mat = materials[min(gv_material(&g, r), material_count - 1u)];
-        if (mat.kind == VOXR_MATERIAL_OPAQUE) {
-          /* Blocks everything from its slab on: the column's tail is 0 from slab k. */
-          for (; written < k; ++written) out[written] = packed;
-          packed = 0u;
-          break;
+      } else if (kind == VOXR_MATERIAL_OPAQUE) {
+        /* Blocks everything from its slab on: the column's tail is 0 from slab k. */
+        for (; written < k; ++written) out[written] = packed;
+        packed = 0u;
+        break;
+      } else if (kind == VOXR_MATERIAL_SHEET) {
+        const float3 t =
+            max((float3)(mat.transmittance[0], mat.transmittance[1], mat.transmittance[2]), (float3)(1e-30f));
+        tau += (float)count * -log(t);
+      } else if (conservative) {
+        in_run = 1;
+        run_absorption = (float3)(mat.absorption[0], mat.absorption[1], mat.absorption[2]);
+      } else if (count & 1u) {
+        /* One boundary inside the slab: half of the slab is inside (the entered or the left one). */
+        const float3 a = (float3)(mat.absorption[0], mat.absorption[1], mat.absorption[2]);
+        const float half_slab = 0.5f * sf_slab_length(&frame, i, j, k);
+        if (inside) {
+          tau -= sigma * half_slab; /* added for the whole slab above */
+          sigma = (float3)(0.0f);
+        } else {
+          tau += a * half_slab;
+          sigma = a;
         }
-        if (mat.kind == VOXR_MATERIAL_SHEET) {
-          const float3 t = max((float3)(mat.transmittance[0], mat.transmittance[1], mat.transmittance[2]),
-                               (float3)(1e-30f));
-          tau += (float)count * -log(t);
-        } else if (count & 1u) {
-          /* One boundary inside the slab: half of the slab is inside (the entered or the left one). */
-          const float3 a = (float3)(mat.absorption[0], mat.absorption[1], mat.absorption[2]);
-          const float half_slab = 0.5f * sf_slab_length(&frame, i, j, k);
-          if (inside) {
-            tau -= sigma * half_slab; /* added for the whole slab above */
-            sigma = (float3)(0.0f);
-          } else {
-            tau += a * half_slab;
-            sigma = a;
-          }
-          inside = !inside;
-        }
+        inside = !inside;
       }
     }
     if (changed) {

@@ -92,7 +92,7 @@ TEST(ProgramCache, CorruptBinariesAreRebuiltFromSource) {
 
 TEST(Profiler, KeepsABoundedWindowPerName) {
   ClRuntime& cl = test::runtime();
-  cl::Buffer out = cl.buffer(256, "probe");
+  cl::Buffer out = cl.buffer(kProbeValues * sizeof(cl_uint), "probe");
   cl::Kernel k = cl.kernel("layout_probe.cl", "layout_probe");
   const size_t launches = Profiler::kWindow + 100;
   const size_t before = cl.profiler().stats()["window probe"].count;

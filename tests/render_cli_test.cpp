@@ -61,6 +61,8 @@ TEST(RenderCli, BadFlagsAndOutputsAreOneLineErrors) {
            {"render --shadows uniform --mode conservative -o " + out.string(),
             "--mode applies to --shadows voxel"},
            {"render --size 64 -o " + out.string(), "--size '64'"},
+           {"render --shadows reference --compare-reference -o " + out.string(), "is the reference itself"},
+           {"render --shadow-res 2 -o " + out.string(), "--shadow-res"},
            {"render " + (scratch() / "missing.json").string() + " -o " + out.string(),
             "missing.json: no such file"},
        }) {

@@ -8,6 +8,7 @@
 
 #include "core/generators.h"
 #include "render/light_frame.h"
+#include "render/light_space_maps.h"
 #include "render/render_scene.h"
 #include "render/transparent_shadow_map.h"
 #include "test_support.h"
@@ -29,15 +30,14 @@ Material sheet(glm::vec3 t) {
   return m;
 }
 
-// Transmittance at floor points `points` (y = 0, normal +y).
+// Transmittance at floor points `points` (y = 0, normal +y) by the voxel or uniform method
+// (TransparentShadowMap) or the filter or opaque map (LightSpaceMaps).
+// `receivers` defaults to the soup's bounds.
 std::vector<glm::vec3> shadow_at(const ShadowCase& c, const std::vector<glm::vec3>& points, uint32_t res,
-                                 const ShadowMapOptions& options) {
+                                 const ShadowMapOptions& options, const Bounds* receivers = nullptr) {
   ClRuntime& cl = test::runtime();
   const RenderLight light = render_light(c.light, Environment{}, c.soup.anchor);
-  const LightFrame frame = fit_light_frame(light, c.soup.bounds(), c.soup, res);
-  const TriangleSoup projected = frame.projective() ? project_to_light_grid(c.soup, frame) : TriangleSoup{};
-  const TriangleSoup& light_soup = frame.projective() ? projected : c.soup;
-  DeviceMesh mesh = upload_mesh(cl, light_soup, frame.grid, SplitCull::kGrid);
+  const LightFrame frame = fit_light_frame(light, receivers ? *receivers : c.soup.bounds(), c.soup, res);
   const std::vector<RenderMaterial> mats = render_materials(c.materials);
   cl::Buffer materials = cl.buffer(mats.size() * sizeof(RenderMaterial), "materials");
   cl.upload(materials, mats.data(), mats.size() * sizeof(RenderMaterial), "upload materials");
@@ -53,10 +53,20 @@ std::vector<glm::vec3> shadow_at(const ShadowCase& c, const std::vector<glm::vec
   cl::Buffer sample_buffer = cl.buffer(samples.size() * sizeof(SurfaceSample), "samples");
   cl.upload(sample_buffer, samples.data(), samples.size() * sizeof(SurfaceSample), "upload samples");
   cl::Buffer out = cl.buffer(samples.size() * 16, "transmittance");
-  TransparentShadowMap map(cl);
-  map.build(mesh, frame, materials, uint32_t(mats.size()),
-            uniform_optical_depth(c.soup, c.materials, frame.params.voxel_size), options);
-  map.lookup(sample_buffer, uint32_t(samples.size()), materials, uint32_t(mats.size()), light, options, out);
+  const uint32_t n = uint32_t(samples.size()), m = uint32_t(mats.size());
+  if (options.method == ShadowMethod::kFilter || options.method == ShadowMethod::kOpaque) {
+    DeviceMesh mesh(cl, c.soup);
+    LightSpaceMaps maps(cl);
+    maps.build(mesh, frame, light, materials, m, options.method);
+    maps.lookup(sample_buffer, n, materials, m, light, options.bias, options.normal_offset, out);
+  } else {
+    const TriangleSoup projected = frame.projective() ? project_to_light_grid(c.soup, frame) : TriangleSoup{};
+    DeviceMesh mesh = upload_mesh(cl, frame.projective() ? projected : c.soup, frame.grid, SplitCull::kGrid);
+    TransparentShadowMap map(cl);
+    map.build(mesh, frame, materials, m, uniform_optical_depth(c.soup, c.materials, frame.params.voxel_size),
+              options);
+    map.lookup(sample_buffer, n, materials, m, light, options, out);
+  }
   std::vector<glm::vec4> t(samples.size());
   cl.download(out, t.data(), t.size() * 16, "download transmittance");
   cl.finish();
@@ -146,10 +156,7 @@ TEST(TransparentShadowMap, ConservativeModeOverCountsAndUniformUsesOneConstant) 
     expect_near3(t, {0.5f, 0.7f, 0.9f}, 2e-3f, "uniform");
 }
 
-TEST(TransparentShadowMap, GlassSlabAbsorbsAlongItsThicknessAndOpaqueBlocks) {
-  Light light;
-  light.type = "directional";
-  light.direction = {0.0f, -1.0f, 0.0f};
+ShadowCase glass_and_wall(const Light& light) {
   ShadowCase c;
   Material floor, glass, wall;
   floor.name = "floor";
@@ -162,13 +169,69 @@ TEST(TransparentShadowMap, GlassSlabAbsorbsAlongItsThicknessAndOpaqueBlocks) {
   c.soup.append(test::box_soup({-1.5f, 0.5f, -0.5f}, {-0.5f, 1.0f, 0.5f}), glm::mat4(1.0f), 1);  // d = 0.5
   c.soup.append(test::box_soup({0.5f, 0.5f, -0.5f}, {1.5f, 1.0f, 0.5f}), glm::mat4(1.0f), 2);
   c.light = light;
-  const auto t = shadow_at(c, {{-1.0f, 0, 0.0f}, {1.0f, 0, 0.0f}, {0.0f, 0, 1.5f}}, 128, ShadowMapOptions{});
-  const glm::vec3 expected = glm::exp(-glass.absorption * 0.5f);
-  // Half-slab resolution at the two boundaries: within one slab's absorption.
-  const float slab = 0.02f * 1.6f * 4.0f;
-  expect_near3(t[0], expected, slab, "under the glass");
-  expect_near3(t[1], {0, 0, 0}, 1e-6f, "under the opaque box");
-  expect_near3(t[2], {1, 1, 1}, 2e-3f, "in the open");
+  return c;
+}
+
+TEST(TransparentShadowMap, GlassSlabAbsorbsAlongItsThicknessAndOpaqueBlocks) {
+  Light light;
+  light.type = "directional";
+  light.direction = {0.0f, -1.0f, 0.0f};
+  const ShadowCase c = glass_and_wall(light);
+  const glm::vec3 expected = glm::exp(-c.materials[1].absorption * 0.5f);
+  const std::vector<glm::vec3> points = {{-1.0f, 0, 0.0f}, {1.0f, 0, 0.0f}, {0.0f, 0, 1.5f}};
+  for (ShadowMethod method : {ShadowMethod::kVoxel, ShadowMethod::kFilter}) {
+    for (RasterMode mode : {RasterMode::kCenter, RasterMode::kConservative}) {
+      if (method == ShadowMethod::kFilter && mode == RasterMode::kConservative) continue;
+      ShadowMapOptions o;
+      o.method = method;
+      o.mode = mode;
+      const auto t = shadow_at(c, points, 128, o);
+      const std::string what = std::string(shadow_method_info(method).name) + " " + raster_mode_name(mode);
+      // The voxel method resolves the glass's two faces to half a slab each; the filter map is exact up to
+      // its fixed point (1/1024 of optical depth).
+      expect_near3(t[0], expected, method == ShadowMethod::kVoxel ? 0.02f * 1.6f * 4.0f : 2e-3f,
+                   (what + ": under the glass").c_str());
+      expect_near3(t[1], {0, 0, 0}, 1e-6f, (what + ": under the opaque box").c_str());
+      expect_near3(t[2], {1, 1, 1}, 2e-3f, (what + ": in the open").c_str());
+    }
+  }
+  ShadowMapOptions o;
+  o.method = ShadowMethod::kOpaque;
+  const auto t = shadow_at(c, points, 128, o);
+  expect_near3(t[0], {0, 0, 0}, 1e-6f, "opaque map: glass blocks");
+  expect_near3(t[2], {1, 1, 1}, 1e-6f, "opaque map: in the open");
+}
+
+TEST(TransparentShadowMap, ACasterReachingPastThePointLightStillShadows) {
+  // A wall at x = 1 from y = -1 to 9 passes beside the light at (0, 5, 0): the ray to (1.5, 0, 0) crosses it
+  // at y = 1.67, nearer the light than any other caster's vertex.
+  Light light;
+  light.type = "point";
+  light.position = {0.0f, 5.0f, 0.0f};
+  ShadowCase c;
+  Material floor, wall;
+  floor.name = "floor";
+  wall.name = "wall";
+  c.materials = {floor, wall};
+  test::add_square(c.soup, 0.0f, -2.0f, 2.0f, 0);
+  const uint32_t b = uint32_t(c.soup.positions.size());
+  c.soup.positions.push_back({1.0f, -1.0f, -1.0f, 1});
+  c.soup.positions.push_back({1.0f, 9.0f, -1.0f, 1});
+  c.soup.positions.push_back({1.0f, 9.0f, 1.0f, 1});
+  c.soup.positions.push_back({1.0f, -1.0f, 1.0f, 1});
+  c.soup.triangles.push_back({b, b + 1, b + 2, 1});
+  c.soup.triangles.push_back({b, b + 2, b + 3, 1});
+  c.light = light;
+  for (ShadowMethod method : {ShadowMethod::kVoxel, ShadowMethod::kOpaque}) {
+    ShadowMapOptions o;
+    o.method = method;
+    Bounds floor;  // the receivers: the light is outside them, the wall reaches past it
+    floor.extend({-2.0f, 0.0f, -2.0f});
+    floor.extend({2.0f, 0.0f, 2.0f});
+    const auto t = shadow_at(c, {{1.5f, 0.0f, 0.0f}, {0.5f, 0.0f, 0.0f}}, 128, o, &floor);
+    expect_near3(t[0], {0, 0, 0}, 1e-6f, "behind the wall");
+    expect_near3(t[1], {1, 1, 1}, 2e-3f, "in front of the wall");
+  }
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "bench/median.h"
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
+#include "cli/parse_args.h"
 #include "cli/process.h"
 #include "core/clock.h"
 #include "core/default_scene.h"
@@ -89,10 +90,8 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
   const std::string device = fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name,
                                          cl.device().driver_version);
   fmt::print("device: {}\n", device);
-  const size_t x = args.size.find('x');
-  if (x == std::string::npos) fail("--size '{}': expected WIDTHxHEIGHT", args.size);
-  const uint32_t width = uint32_t(std::stoul(args.size.substr(0, x)));
-  const uint32_t height = uint32_t(std::stoul(args.size.substr(x + 1)));
+  const glm::uvec2 size = parse_size(args.size, "--size");
+  const uint32_t width = size.x, height = size.y;
   std::vector<MethodCase> methods;
   for (const std::string& m : args.methods) methods.push_back(parse_method_case(m));
 
@@ -264,7 +263,7 @@ Command add_bench_shadows(CLI::App& bench) {
       ->capture_default_str();
   sh->add_option("--res", shadows->resolutions, "shadow resolutions")
       ->delimiter(',')
-      ->check(CLI::Range(2u, 4096u))
+      ->check(CLI::Range(3u, 4096u))
       ->capture_default_str();
   sh->add_option("--methods", shadows->methods, "voxel-center, voxel-conservative, uniform, filter, opaque")
       ->delimiter(',')

@@ -56,17 +56,6 @@ struct RenderArgs {
   bool quiet = false;
 };
 
-glm::uvec2 parse_size(const std::string& text) {
-  const size_t x = text.find_first_of("xX");
-  if (x == std::string::npos) fail("--size '{}': expected WIDTHxHEIGHT, e.g. 640x480", text);
-  const std::vector<double> w = parse_numbers(text.substr(0, x), 1, "--size");
-  const std::vector<double> h = parse_numbers(text.substr(x + 1), 1, "--size");
-  if (w[0] < 1 || h[0] < 1 || w[0] > 16384 || h[0] > 16384 || w[0] != std::floor(w[0]) ||
-      h[0] != std::floor(h[0]))
-    fail("--size '{}': width and height must be whole numbers in 1..16384", text);
-  return {uint32_t(w[0]), uint32_t(h[0])};
-}
-
 // "out/a.png" -> "out/a.error.png"
 std::filesystem::path beside(const std::string& output, const std::string& tag) {
   std::filesystem::path p(output);
@@ -88,12 +77,17 @@ int run_render(const RenderArgs& args) {
     fail("{}: the image format is chosen by extension: .png or .exr", args.output);
   check_output_path(args.output);
   if (!args.report.empty()) check_output_path(args.report);
-  const glm::uvec2 size = args.size.empty() ? glm::uvec2(0) : parse_size(args.size);  // 0: the camera's
+  const glm::uvec2 size =
+      args.size.empty() ? glm::uvec2(0) : parse_size(args.size, "--size");  // 0: the camera's
   if (!args.input.empty()) {
     std::error_code ec;
     if (!std::filesystem::exists(args.input, ec)) fail("{}: no such file", args.input);
   }
   const bool reference_only = options.shadows == ShadowMethod::kReference;
+  if (reference_only && args.compare_reference)
+    fail(
+        "--compare-reference measures a shadow method against the reference; --shadows reference is the "
+        "reference itself");
   const bool tty = isatty(fileno(stderr)) && !args.quiet;
 
   std::future<PreparedRuntime<FrameRenderer>> background;
@@ -247,7 +241,7 @@ Command add_render(CLI::App& app) {
   sub->add_option("--shadow-res", args->shadow_res,
                   "columns along the longer side of the light's grid, and its slabs (voxel, uniform, filter, "
                   "opaque)")
-      ->check(CLI::Range(2u, 4096u))
+      ->check(CLI::Range(3u, 4096u))
       ->capture_default_str();
   sub->add_option("--mode", args->mode,
                   "voxel: center (default; each column's write count is its centre ray's crossings) or "

@@ -48,4 +48,15 @@ WorldBox parse_bounds(const std::string& text, const std::string& flag) {
   return b;
 }
 
+glm::uvec2 parse_size(const std::string& text, const std::string& flag) {
+  const size_t x = text.find_first_of("xX");
+  if (x == std::string::npos) fail("{} '{}': expected WIDTHxHEIGHT, e.g. 640x480", flag, text);
+  const std::vector<double> w = parse_numbers(text.substr(0, x), 1, flag);
+  const std::vector<double> h = parse_numbers(text.substr(x + 1), 1, flag);
+  if (w[0] < 1 || h[0] < 1 || w[0] > 16384 || h[0] > 16384 || w[0] != std::floor(w[0]) ||
+      h[0] != std::floor(h[0]))
+    fail("{} '{}': width and height must be whole numbers in 1..16384", flag, text);
+  return {uint32_t(w[0]), uint32_t(h[0])};
+}
+
 }  // namespace voxr::cli

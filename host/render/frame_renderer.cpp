@@ -93,7 +93,7 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
                       shadow_map_options(options));
     st.device_bytes = shadow_map_.device_bytes();
   } else if (uses_light_maps(options.shadows)) {
-    light_maps_.build(*mesh_, st.light, materials_buffer_, material_count_, options.shadows);
+    light_maps_.build(*mesh_, st.light, light, materials_buffer_, material_count_, options.shadows);
     st.light_triangles = mesh_->triangle_count();
     st.device_bytes = light_maps_.device_bytes();
   }

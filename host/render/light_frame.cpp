@@ -32,7 +32,7 @@ glm::mat3 frame_rows(const glm::vec3& forward) {
 }
 
 void check_resolution(uint32_t resolution) {
-  if (resolution < 2 || resolution > 4096) fail("--shadow-res {} is out of range (2..4096)", resolution);
+  if (resolution < 3 || resolution > 4096) fail("--shadow-res {} is out of range (3..4096)", resolution);
 }
 
 }  // namespace
@@ -82,6 +82,19 @@ Bounds visible_bounds(const Bounds& scene, const CameraFrame& camera) {
 }
 
 namespace {
+
+// Clips triangle `tri` (view-space points) to z >= z_min (Sutherland-Hodgman against one plane): at most 4
+// corners, written to `out`; returns how many.
+int clip_near(const std::array<glm::vec3, 3>& tri, float z_min, std::array<glm::vec3, 4>& out) {
+  int n = 0;
+  for (int e = 0; e < 3; ++e) {
+    const glm::vec3 a = tri[e], b = tri[(e + 1) % 3];
+    const bool ina = a.z >= z_min, inb = b.z >= z_min;
+    if (ina) out[n++] = a;
+    if (ina != inb) out[n++] = a + (b - a) * ((z_min - a.z) / (b.z - a.z));
+  }
+  return n;
+}
 
 // Light space: (x, y, depth) with x, y the column coordinates (orthographic: world units across the light;
 // frustum: x/z and y/z in the light's view) and depth along the light.
@@ -170,7 +183,10 @@ LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, co
     receivers_far = std::max(receivers_far, q.z);
   }
   // The columns of the triangles that can shadow a receiver, and their nearest depth.
-  const float depth_floor = space.projective ? 1e-3f * receivers_far : -kInf;
+  // Frustum slabs are uniform in 1/depth: a near plane close to the light would spend them all there. Casters
+  // nearer the light than a tenth of the nearest receiver's depth are cut there (their shadow then starts at
+  // the cut).
+  const float depth_floor = space.projective ? std::max(1e-3f * receivers_far, 0.1f * receivers_near) : -kInf;
   Footprint casting;
   // Per casting triangle: its light-space box and nearest depth (vertices in front of the light only).
   struct Caster {
@@ -182,20 +198,28 @@ LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, co
     const glm::vec3 a(casters.positions[t.x]), b(casters.positions[t.y]), c(casters.positions[t.z]);
     if (!casts_on(a, b, c, rc, light, eps)) continue;
     Caster k{{}, kInf};
-    bool in_front = true;
-    for (const glm::vec3& p : {a, b, c}) {
-      if (!(space.view_depth(p) > depth_floor)) {
-        in_front = false;
-        continue;
-      }
-      const glm::vec3 q = space(p);
+    // A triangle reaching behind the light's near cut (projective) counts by its part in front of it.
+    std::array<glm::vec3, 4> corners_in_front;
+    int n_front = 0;
+    if (!space.projective) {
+      corners_in_front = {a, b, c, c};
+      n_front = 3;
+    } else {
+      const std::array<glm::vec3, 3> view{space.rows * (a - space.light), space.rows * (b - space.light),
+                                          space.rows * (c - space.light)};
+      n_front = clip_near(view, depth_floor, corners_in_front);
+      for (int i = 0; i < n_front; ++i)  // back to world, so space() maps them like any point
+        corners_in_front[i] = glm::transpose(space.rows) * corners_in_front[i] + space.light;
+    }
+    for (int i = 0; i < n_front; ++i) {
+      const glm::vec3 q = space(corners_in_front[i]);
       k.box.extend(glm::vec2(q));
       k.near = std::min(k.near, q.z);
     }
     if (k.box.empty()) continue;
     casting.extend(k.box.lo);
     casting.extend(k.box.hi);
-    if (in_front) casting_triangles.push_back(k);
+    casting_triangles.push_back(k);
   }
   Footprint fp = receiving;
   if (!casting.empty() && casting.overlaps(receiving)) {
@@ -208,8 +232,10 @@ LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, co
     if (k.near < near && k.box.overlaps(fp)) near = k.near;
   if (!(near < receivers_far)) near = receivers_near;
   const glm::vec2 extent = glm::max(fp.hi - fp.lo, glm::vec2(1e-6f));
-  // One column of margin on every side (bilinear lookups at the edge).
-  const float h = std::max(extent.x, extent.y) / float(n - 2);
+  // One column of margin on every side (bilinear lookups at the edge). Orthographic grids also need their
+  // (at most 4 n) cubic voxels to reach from the nearest caster to the farthest receiver.
+  float h = std::max(extent.x, extent.y) / float(n - 2);
+  if (!space.projective) h = std::max(h, (receivers_far - near) / float(4 * n - 1));
   const glm::uvec2 columns(uint32_t(std::ceil(extent.x / h)) + 2, uint32_t(std::ceil(extent.y / h)) + 2);
   if (!space.projective) {
     // Cubic voxels; half a voxel of margin in depth.
@@ -254,23 +280,6 @@ LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, co
   f.params.dims[2] = f.grid.dims.z;
   return f;
 }
-
-namespace {
-
-// Clips triangle `tri` (view-space points) to z >= z_min (Sutherland-Hodgman against one plane): at most 4
-// corners, written to `out`; returns how many.
-int clip_near(const std::array<glm::vec3, 3>& tri, float z_min, std::array<glm::vec3, 4>& out) {
-  int n = 0;
-  for (int e = 0; e < 3; ++e) {
-    const glm::vec3 a = tri[e], b = tri[(e + 1) % 3];
-    const bool ina = a.z >= z_min, inb = b.z >= z_min;
-    if (ina) out[n++] = a;
-    if (ina != inb) out[n++] = a + (b - a) * ((z_min - a.z) / (b.z - a.z));
-  }
-  return n;
-}
-
-}  // namespace
 
 TriangleSoup project_to_light_grid(const TriangleSoup& soup, const LightFrame& frame) {
   VOXR_CHECK(frame.projective());

@@ -49,8 +49,8 @@ std::vector<ProgramSpec> LightSpaceMaps::programs() const {
   return {{"shadow_filter.cl", {}}};
 }
 
-void LightSpaceMaps::build(const DeviceMesh& mesh, const LightFrame& frame, const cl::Buffer& materials,
-                           uint32_t material_count, ShadowMethod method) {
+void LightSpaceMaps::build(const DeviceMesh& mesh, const LightFrame& frame, const RenderLight& light,
+                           const cl::Buffer& materials, uint32_t material_count, ShadowMethod method) {
   VOXR_CHECK(method == ShadowMethod::kOpaque || method == ShadowMethod::kFilter);
   frame_ = frame;
   method_ = method;
@@ -69,8 +69,9 @@ void LightSpaceMaps::build(const DeviceMesh& mesh, const LightFrame& frame, cons
   rasterizer_.bin(mesh, target, materials, material_count, transparent_bins_);
   cl::Kernel kernel = cl_.kernel("shadow_filter.cl", "shadow_filter_accumulate");
   rasterizer_.for_each_batch(transparent_bins_, [&](const cl::Buffer& records, uint32_t count) {
-    cl_.launch("shadow_filter_accumulate", kernel, count, kGroup, frame.params, transparent_bins_.prims(),
-               records, cl_uint(count), mesh.triangles(), materials, cl_uint(material_count), tau);
+    cl_.launch("shadow_filter_accumulate", kernel, count, kGroup, frame.params, light,
+               transparent_bins_.prims(), records, cl_uint(count), mesh.positions(), mesh.triangles(),
+               materials, cl_uint(material_count), tau);
   });
 }
 

@@ -32,8 +32,8 @@ class LightSpaceMaps {
   std::vector<ProgramSpec> programs() const;
 
   // Rasterizes `mesh` (the scene's, anchor-relative) from the light: method kOpaque or kFilter.
-  void build(const DeviceMesh& mesh, const LightFrame& frame, const cl::Buffer& materials,
-             uint32_t material_count, ShadowMethod method);
+  void build(const DeviceMesh& mesh, const LightFrame& frame, const RenderLight& light,
+             const cl::Buffer& materials, uint32_t material_count, ShadowMethod method);
 
   // Transmittance (float4) of `count` SurfaceSamples, as TransparentShadowMap::lookup.
   void lookup(const cl::Buffer& samples, uint32_t count, const cl::Buffer& materials, uint32_t material_count,

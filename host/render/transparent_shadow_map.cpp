@@ -58,8 +58,9 @@ void TransparentShadowMap::build(const DeviceMesh& light_mesh, const LightFrame&
   const uint32_t method = options.method == ShadowMethod::kUniform ? kShadowUniform : kShadowVoxel;
   cl::Buffer& tails = tails_.ensure(cl_, columns * 8, "transmittance volume tails");
   cl_.launch("shadow_transmittance", kernel, columns, kGroup, grid_.view_args(cl_), frame.params, materials,
-             cl_uint(material_count), cl_uint(method), uniform_tau.x, uniform_tau.y, uniform_tau.z, volume,
-             tails);
+             cl_uint(material_count), cl_uint(method),
+             cl_uint(options.mode == RasterMode::kConservative ? 1 : 0), uniform_tau.x, uniform_tau.y,
+             uniform_tau.z, volume, tails);
 }
 
 void TransparentShadowMap::lookup(const cl::Buffer& samples, uint32_t count, const cl::Buffer& materials,
