@@ -12,8 +12,7 @@
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void count_bits(__global const uint* words,
-                                                                              ulong n,
-                                                                              __global ulong* total) {
+                                                                               ulong n, __global ulong* total) {
   const ulong begin = (ulong)get_global_id(0) * COUNT_WORDS;
   if (begin >= n) return;
   const ulong end = min(begin + COUNT_WORDS, n);

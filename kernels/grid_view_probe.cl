@@ -23,8 +23,8 @@
 #include "grid_view.h"
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void grid_view_fetch(
-    VOXR_GRID_VIEW_PARAMS, __global const int4* query, uint n, __global uint* flags, __global uint* rank,
-    __global uint* count, __global uint* material, __global float* normal) {
+    VOXR_GRID_VIEW_PARAMS, __global const int4* query, uint n, __global uint* flags,
+    __global uint* rank, __global uint* count, __global uint* material, __global float* normal) {
   const uint q = get_global_id(0);
   if (q >= n) return;
   const GridView g = VOXR_GRID_VIEW();

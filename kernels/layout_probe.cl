@@ -5,9 +5,9 @@
 #include "voxr_layout.h"
 
 #define PROBE_SIZE(T) values[n++] = sizeof(T);
-#define PROBE_OFFSET(T, field)                                                     \
-  {                                                                                \
-    T probe;                                                                       \
+#define PROBE_OFFSET(T, field)                                                \
+  {                                                                           \
+    T probe;                                                                  \
     values[n++] = (uint)((__private char*)&probe.field - (__private char*)&probe); \
   }
 

@@ -3,8 +3,8 @@
  * totals recursively; scan_add adds each tile's offset.
  * Types: SCAN_IN (uint or ulong) is read, SCAN_OUT is written, tile totals are ulong so a grand total
  * beyond 32 bits is still exact. SCAN_RANKED_WORDS scans the set-bit counts of 32-bit occupancy words and
- * writes each word beside its rank (the rank index, voxr_layout.h VOXR_RANKED), so a voxel's rank costs one
- * load. shape: scan_tiles one work group per tile; scan_add one work item per SCAN_ITEMS elements. */
+ * writes each word beside its rank (the rank index, voxr_layout.h VOXR_RANKED), so a voxel's rank costs one load.
+ * shape: scan_tiles one work group per tile; scan_add one work item per SCAN_ITEMS elements. */
 #include "voxr_layout.h"
 
 #ifndef WG_SIZE
@@ -29,10 +29,8 @@
 #define SCAN_SHIFT 0
 #endif
 
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void scan_tiles(__global const SCAN_IN* in,
-                                                                              __global SCAN_OUT* out,
-                                                                              __global ulong* tile_sums,
-                                                                              ulong n) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void scan_tiles(
+    __global const SCAN_IN* in, __global SCAN_OUT* out, __global ulong* tile_sums, ulong n) {
   __local ulong partial[WG_SIZE];
   const uint lid = get_local_id(0);
   const ulong base = ((ulong)get_group_id(0) * WG_SIZE + lid) * SCAN_ITEMS;

@@ -40,8 +40,8 @@ inline long slicemap_floor_div(long a, long d) {
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void slicemap_raster(
-    VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const SlicemapRecord* records,
-    uint record_count, __global uint* depth_range, __global uint* slicemap) {
+    VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const SlicemapRecord* records, uint record_count,
+    __global uint* depth_range, __global uint* slicemap) {
   const uint gid = get_global_id(0);
   if (gid >= record_count) return;
   const SlicemapRecord rec = records[gid];

@@ -26,8 +26,7 @@
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void slicemap_setup(
     VoxGridParams grid, __global const float4* positions, __global const uint4* triangles,
-    __global VoxSnappedTriangle* snapped, __global uint* tile_counts, __global SlicemapTiles* tile_info,
-    __global uint* too_large) {
+    __global VoxSnappedTriangle* snapped, __global uint* tile_counts, __global SlicemapTiles* tile_info, __global uint* too_large) {
   const uint t = get_global_id(0);
   if (t >= grid.triangle_count) return;
   VoxTri tri;

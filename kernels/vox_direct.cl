@@ -37,18 +37,18 @@
  * with the value at cell (di, dj, dk) of the triangle's range = NAME_v + di*NAME_sx + dj*NAME_sy +
  * dk*NAME_sz. T is the projection of the vertex off the edge, relative to v0; r is the first cell's low
  * corner relative to v0. */
-#define VOX_EDGE_AXIS(NAME, AX, AY, AZ, T)                                         \
-  int NAME##_v, NAME##_sx, NAME##_sy, NAME##_sz;                                   \
-  uint NAME##_w;                                                                   \
-  {                                                                                \
-    const int ax_ = (AX), ay_ = (AY), az_ = (AZ), t_ = (T);                        \
-    const int lo_ = min(0, t_) - size * (max(ax_, 0) + max(ay_, 0) + max(az_, 0)); \
-    const int hi_ = max(0, t_) - size * (min(ax_, 0) + min(ay_, 0) + min(az_, 0)); \
-    NAME##_v = ax_ * rx + ay_ * ry + az_ * rz - lo_;                               \
-    NAME##_w = (uint)(hi_ - lo_);                                                  \
-    NAME##_sx = ax_ * VOX_S;                                                       \
-    NAME##_sy = ay_ * VOX_S;                                                       \
-    NAME##_sz = az_ * VOX_S;                                                       \
+#define VOX_EDGE_AXIS(NAME, AX, AY, AZ, T)                                          \
+  int NAME##_v, NAME##_sx, NAME##_sy, NAME##_sz;                                    \
+  uint NAME##_w;                                                                    \
+  {                                                                                 \
+    const int ax_ = (AX), ay_ = (AY), az_ = (AZ), t_ = (T);                         \
+    const int lo_ = min(0, t_) - size * (max(ax_, 0) + max(ay_, 0) + max(az_, 0));  \
+    const int hi_ = max(0, t_) - size * (min(ax_, 0) + min(ay_, 0) + min(az_, 0));  \
+    NAME##_v = ax_ * rx + ay_ * ry + az_ * rz - lo_;                                \
+    NAME##_w = (uint)(hi_ - lo_);                                                   \
+    NAME##_sx = ax_ * VOX_S;                                                        \
+    NAME##_sy = ay_ * VOX_S;                                                        \
+    NAME##_sz = az_ * VOX_S;                                                        \
   }
 #define VOX_ROW_TEST(NAME) ((uint)(NAME##_v + dj * NAME##_sy + dk * NAME##_sz) <= NAME##_w)
 #define VOX_CELL_TEST(NAME) ((uint)(NAME##_v + di * NAME##_sx + dj * NAME##_sy + dk * NAME##_sz) <= NAME##_w)
@@ -56,43 +56,43 @@
 /* Cells [lo, hi] (relative to the unclamped first cell, already clamped to the grid) of a small triangle
  * whose snapped vertices relative to that cell's low corner are u0, u1, u2; `row0` is the linear index of
  * the first cell. */
-#define VOX_DIRECT_CONSERVATIVE_BODY                                                                         \
-  const int mi = (int)grid.margin;                                                                           \
-  const int size = VOX_S + 2 * mi;                                                                           \
-  const int rx = -mi - u0x, ry = -mi - u0y, rz = -mi - u0z;                                                  \
-  const int e0x = u1x - u0x, e0y = u1y - u0y, e0z = u1z - u0z;                                               \
-  const int e1x = u2x - u1x, e1y = u2y - u1y, e1z = u2z - u1z;                                               \
-  const int e2x = u0x - u2x, e2y = u0y - u2y, e2z = u0z - u2z;                                               \
-  /* v1 - v0 = e0, v2 - v0 = -e2 */                                                                          \
-  const int r2x = -e2x, r2y = -e2y, r2z = -e2z;                                                              \
-  /* edge x X = (0, dz, -dy), edge x Y = (-dz, 0, dx), edge x Z = (dy, -dx, 0) */                            \
-  VOX_EDGE_AXIS(x0, 0, e0z, -e0y, e0z* r2y - e0y * r2z)                                                      \
-  VOX_EDGE_AXIS(x1, 0, e1z, -e1y, e1z* e0y - e1y * e0z)                                                      \
-  VOX_EDGE_AXIS(x2, 0, e2z, -e2y, e2z* e0y - e2y * e0z)                                                      \
-  VOX_EDGE_AXIS(y0, -e0z, 0, e0x, e0x* r2z - e0z * r2x)                                                      \
-  VOX_EDGE_AXIS(y1, -e1z, 0, e1x, e1x* e0z - e1z * e0x)                                                      \
-  VOX_EDGE_AXIS(y2, -e2z, 0, e2x, e2x* e0z - e2z * e0x)                                                      \
-  VOX_EDGE_AXIS(z0, e0y, -e0x, 0, e0y* r2x - e0x * r2y)                                                      \
-  VOX_EDGE_AXIS(z1, e1y, -e1x, 0, e1y* e0x - e1x * e0y)                                                      \
-  VOX_EDGE_AXIS(z2, e2y, -e2x, 0, e2y* e0x - e2x * e0y)                                                      \
-  /* the normal axis: the plane through v0, in 64-bit */                                                     \
-  const long n0 = (long)e0y * r2z - (long)e0z * r2y;                                                         \
-  const long n1 = (long)e0z * r2x - (long)e0x * r2z;                                                         \
-  const long n2 = (long)e0x * r2y - (long)e0y * r2x;                                                         \
-  const long nlo = -(long)size * (max(n0, 0L) + max(n1, 0L) + max(n2, 0L));                                  \
-  const ulong nw = (ulong)(-(long)size * (min(n0, 0L) + min(n1, 0L) + min(n2, 0L)) - nlo);                   \
-  const long nv = n0 * rx + n1 * ry + n2 * rz - nlo;                                                         \
-  const long nsx = n0 * VOX_S, nsy = n1 * VOX_S, nsz = n2 * VOX_S;                                           \
-  for (int dk = lz; dk <= hz; ++dk)                                                                          \
-    for (int dj = ly; dj <= hy; ++dj) {                                                                      \
-      if (!(VOX_ROW_TEST(x0) & VOX_ROW_TEST(x1) & VOX_ROW_TEST(x2))) continue;                               \
-      const ulong row = row0 + ((ulong)dk * grid.dims[1] + (ulong)dj) * grid.dims[0];                        \
-      long nval = nv + lx * nsx + dj * nsy + dk * nsz;                                                       \
-      for (int di = lx; di <= hx; ++di, nval += nsx) {                                                       \
-        const int inside = ((ulong)nval <= nw) & VOX_CELL_TEST(y0) & VOX_CELL_TEST(y1) & VOX_CELL_TEST(y2) & \
-                           VOX_CELL_TEST(z0) & VOX_CELL_TEST(z1) & VOX_CELL_TEST(z2);                        \
-        if (inside) vox_emit(&w, row + (ulong)di);                                                           \
-      }                                                                                                      \
+#define VOX_DIRECT_CONSERVATIVE_BODY                                                                            \
+  const int mi = (int)grid.margin;                                                                              \
+  const int size = VOX_S + 2 * mi;                                                                              \
+  const int rx = -mi - u0x, ry = -mi - u0y, rz = -mi - u0z;                                                     \
+  const int e0x = u1x - u0x, e0y = u1y - u0y, e0z = u1z - u0z;                                                  \
+  const int e1x = u2x - u1x, e1y = u2y - u1y, e1z = u2z - u1z;                                                  \
+  const int e2x = u0x - u2x, e2y = u0y - u2y, e2z = u0z - u2z;                                                  \
+  /* v1 - v0 = e0, v2 - v0 = -e2 */                                                                             \
+  const int r2x = -e2x, r2y = -e2y, r2z = -e2z;                                                                 \
+  /* edge x X = (0, dz, -dy), edge x Y = (-dz, 0, dx), edge x Z = (dy, -dx, 0) */                               \
+  VOX_EDGE_AXIS(x0, 0, e0z, -e0y, e0z * r2y - e0y * r2z)                                                        \
+  VOX_EDGE_AXIS(x1, 0, e1z, -e1y, e1z * e0y - e1y * e0z)                                                        \
+  VOX_EDGE_AXIS(x2, 0, e2z, -e2y, e2z * e0y - e2y * e0z)                                                        \
+  VOX_EDGE_AXIS(y0, -e0z, 0, e0x, e0x * r2z - e0z * r2x)                                                        \
+  VOX_EDGE_AXIS(y1, -e1z, 0, e1x, e1x * e0z - e1z * e0x)                                                        \
+  VOX_EDGE_AXIS(y2, -e2z, 0, e2x, e2x * e0z - e2z * e0x)                                                        \
+  VOX_EDGE_AXIS(z0, e0y, -e0x, 0, e0y * r2x - e0x * r2y)                                                        \
+  VOX_EDGE_AXIS(z1, e1y, -e1x, 0, e1y * e0x - e1x * e0y)                                                        \
+  VOX_EDGE_AXIS(z2, e2y, -e2x, 0, e2y * e0x - e2x * e0y)                                                        \
+  /* the normal axis: the plane through v0, in 64-bit */                                                        \
+  const long n0 = (long)e0y * r2z - (long)e0z * r2y;                                                            \
+  const long n1 = (long)e0z * r2x - (long)e0x * r2z;                                                            \
+  const long n2 = (long)e0x * r2y - (long)e0y * r2x;                                                            \
+  const long nlo = -(long)size * (max(n0, 0L) + max(n1, 0L) + max(n2, 0L));                                     \
+  const ulong nw = (ulong)(-(long)size * (min(n0, 0L) + min(n1, 0L) + min(n2, 0L)) - nlo);                      \
+  const long nv = n0 * rx + n1 * ry + n2 * rz - nlo;                                                            \
+  const long nsx = n0 * VOX_S, nsy = n1 * VOX_S, nsz = n2 * VOX_S;                                              \
+  for (int dk = lz; dk <= hz; ++dk)                                                                             \
+    for (int dj = ly; dj <= hy; ++dj) {                                                                         \
+      if (!(VOX_ROW_TEST(x0) & VOX_ROW_TEST(x1) & VOX_ROW_TEST(x2))) continue;                                  \
+      const ulong row = row0 + ((ulong)dk * grid.dims[1] + (ulong)dj) * grid.dims[0];                            \
+      long nval = nv + lx * nsx + dj * nsy + dk * nsz;                                                          \
+      for (int di = lx; di <= hx; ++di, nval += nsx) {                                                          \
+        const int inside = ((ulong)nval <= nw) & VOX_CELL_TEST(y0) & VOX_CELL_TEST(y1) & VOX_CELL_TEST(y2) &    \
+                           VOX_CELL_TEST(z0) & VOX_CELL_TEST(z1) & VOX_CELL_TEST(z2);                           \
+        if (inside) vox_emit(&w, row + (ulong)di);                                                              \
+      }                                                                                                         \
     }
 #endif
 
@@ -119,11 +119,9 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
   const long m = (long)grid.margin;
   const int fx = (int)vox_floor_cell(lo_x - m - 1), fy = (int)vox_floor_cell(lo_y - m - 1);
   const int fz = (int)vox_floor_cell(lo_z - m - 1);
-  const int tx = (int)vox_floor_cell(hi_x + m), ty = (int)vox_floor_cell(hi_y + m),
-            tz = (int)vox_floor_cell(hi_z + m);
+  const int tx = (int)vox_floor_cell(hi_x + m), ty = (int)vox_floor_cell(hi_y + m), tz = (int)vox_floor_cell(hi_z + m);
 #else
-  const int fx = (int)vox_floor_cell(lo_x - VOX_S / 2 + VOX_S - 1),
-            fy = (int)vox_floor_cell(lo_y - VOX_S / 2 + VOX_S - 1);
+  const int fx = (int)vox_floor_cell(lo_x - VOX_S / 2 + VOX_S - 1), fy = (int)vox_floor_cell(lo_y - VOX_S / 2 + VOX_S - 1);
   const int fz = (int)vox_floor_cell(lo_z);
   const int tx = (int)vox_floor_cell(hi_x - VOX_S / 2), ty = (int)vox_floor_cell(hi_y - VOX_S / 2);
   const int tz = (int)vox_floor_cell(hi_z);
@@ -151,8 +149,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
 #if VOX_PASS == 1
   if (grid.channels & VOX_CH_NORMAL)
-    vox_fixed_normal(vox_cross((long3)(x1 - x0, y1 - y0, z1 - z0), (long3)(x2 - x0, y2 - y0, z2 - z0)),
-                     &w.normal);
+    vox_fixed_normal(vox_cross((long3)(x1 - x0, y1 - y0, z1 - z0), (long3)(x2 - x0, y2 - y0, z2 - z0)), &w.normal);
 #endif
   const long bx = (long)fx * VOX_S, by = (long)fy * VOX_S, bz = (long)fz * VOX_S;
   const int u0x = (int)(x0 - bx), u0y = (int)(y0 - by), u0z = (int)(z0 - bz);
@@ -185,7 +182,6 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
 #endif
   VoxRule rule;
   vox_rule_init(&rule, &t, &grid);
-  for (int k = t.first[2]; k <= t.last[2]; ++k)
-    vox_scan_slab(&t, &rule, &grid, k, t.first[1], t.last[1], 0, &w);
+  for (int k = t.first[2]; k <= t.last[2]; ++k) vox_scan_slab(&t, &rule, &grid, k, t.first[1], t.last[1], 0, &w);
 #endif
 }

@@ -12,8 +12,8 @@
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_finalize(
-    __global const long* acc, __global uint* count, __global int* nsum, __global float* normal,
-    uint voxel_count, uint channels) {
+    __global const long* acc, __global uint* count, __global int* nsum, __global float* normal, uint voxel_count,
+    uint channels) {
   const uint r = get_global_id(0);
   if (r >= voxel_count) return;
   const long p0 = acc[2 * (ulong)r];

@@ -11,9 +11,8 @@
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
-    VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const VoxCopy* copies,
-    uint copy_count, __global uint* occ, __global const ulong* ranked, __global long* acc,
-    __global uint* material) {
+    VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const VoxCopy* copies, uint copy_count,
+    __global uint* occ, __global const ulong* ranked, __global long* acc, __global uint* material) {
   const uint gid = get_global_id(0);
   if (gid >= copy_count) return;
   const VoxCopy rec = copies[gid];

@@ -5,8 +5,8 @@
  * out: snapped[e] (what the later stages read instead of the mesh), copy_counts[e], copy_info[e];
  *      too_large counts triangles the host should have split (must stay 0).
  * shape: one work item per entry (grid.triangle_count entries). */
-#include "vox_triangle.h"
 #include "voxr_layout.h"
+#include "vox_triangle.h"
 
 #ifndef WG_SIZE
 #define WG_SIZE 64

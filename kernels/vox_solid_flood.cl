@@ -8,8 +8,8 @@
  * out: outside, grown in place; changed = 1 when a sweep grew it
  * shape: vox_solid_flood_x: one work item per row (j, k), 32 voxels per step with a log-step fill inside the
  *        word; vox_solid_flood_y / _z: one work item per row word, 32 parallel lines along y / z. */
-#include "vox_solid_bits.h"
 #include "voxr_layout.h"
+#include "vox_solid_bits.h"
 
 #ifndef WG_SIZE
 #define WG_SIZE 64
@@ -43,7 +43,8 @@ inline uint vox_fill_down(uint g, uint p) {
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_flood_x(
-    VoxSolidLayout layout, __global const uint* free_bits, __global uint* outside, __global uint* changed) {
+    VoxSolidLayout layout, __global const uint* free_bits, __global uint* outside,
+    __global uint* changed) {
   const uint ny = layout.dims[1], nz = layout.dims[2];
   const uint words_x = layout.words_x, slice_words = layout.slice_words;
   const ulong row = get_global_id(0);
@@ -95,7 +96,8 @@ inline uint vox_sweep_lines(__global const uint* free_bits, __global uint* outsi
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_flood_y(
-    VoxSolidLayout layout, __global const uint* free_bits, __global uint* outside, __global uint* changed) {
+    VoxSolidLayout layout, __global const uint* free_bits, __global uint* outside,
+    __global uint* changed) {
   const uint ny = layout.dims[1], nz = layout.dims[2];
   const uint words_x = layout.words_x, slice_words = layout.slice_words;
   const ulong gid = get_global_id(0);
@@ -105,7 +107,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_flo
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_flood_z(
-    VoxSolidLayout layout, __global const uint* free_bits, __global uint* outside, __global uint* changed) {
+    VoxSolidLayout layout, __global const uint* free_bits, __global uint* outside,
+    __global uint* changed) {
   const uint ny = layout.dims[1], nz = layout.dims[2];
   const uint words_x = layout.words_x, slice_words = layout.slice_words;
   const ulong gid = get_global_id(0);

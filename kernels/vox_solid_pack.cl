@@ -4,15 +4,16 @@
  * out: free_bits = real voxels that are not surface, outside = free border voxels (both row-padded,
  *      vox_solid_bits.h; padding words are left alone, no stage reads them)
  * shape: one work item per x row (j, k), its words_x words in turn. */
-#include "vox_solid_bits.h"
 #include "voxr_layout.h"
+#include "vox_solid_bits.h"
 
 #ifndef WG_SIZE
 #define WG_SIZE 64
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_pack(
-    VoxSolidLayout layout, __global const uint* surface, __global uint* free_bits, __global uint* outside) {
+    VoxSolidLayout layout, __global const uint* surface,
+    __global uint* free_bits, __global uint* outside) {
   const uint nx = layout.dims[0], ny = layout.dims[1], nz = layout.dims[2];
   const uint words_x = layout.words_x, slice_words = layout.slice_words;
   const uint row = get_global_id(0);

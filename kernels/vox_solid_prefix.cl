@@ -6,8 +6,8 @@
  * in:  toggles (row-padded bits, vox_solid_bits.h), odd (one row-padded bit per column; late only)
  * out: toggles, in place; resolved (one row-padded bit per column; late only); questionable += odd columns
  * shape: one work item per row word (j, wx), sweeping 32 columns along z at once. */
-#include "vox_solid_bits.h"
 #include "voxr_layout.h"
+#include "vox_solid_bits.h"
 
 #ifndef WG_SIZE
 #define WG_SIZE 64
@@ -17,8 +17,8 @@
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_prefix(
-    VoxSolidLayout layout, __global uint* toggles, __global const uint* odd, __global uint* resolved,
-    __global uint* questionable) {
+    VoxSolidLayout layout, __global uint* toggles,
+    __global const uint* odd, __global uint* resolved, __global uint* questionable) {
   const uint nx = layout.dims[0], ny = layout.dims[1], nz = layout.dims[2];
   const uint words_x = layout.words_x, slice_words = layout.slice_words;
   const uint gid = get_global_id(0);

@@ -11,8 +11,8 @@
  *      column was resolved
  * shape: one work item per row word (j, wx): 32 columns, every layer k, whole-word operations. An item writes
  *        only its own words, and the bits other items read from them (resolved_in columns) do not change. */
-#include "vox_solid_bits.h"
 #include "voxr_layout.h"
+#include "vox_solid_bits.h"
 
 #ifndef WG_SIZE
 #define WG_SIZE 64
@@ -24,8 +24,8 @@ inline uint vox_at_least_two(uint a, uint b, uint c, uint d) {
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_repair(
-    VoxSolidLayout layout, __global uint* inside, __global const uint* resolved_in,
-    __global uint* resolved_out, __global uint* changed) {
+    VoxSolidLayout layout, __global uint* inside,
+    __global const uint* resolved_in, __global uint* resolved_out, __global uint* changed) {
   const uint nx = layout.dims[0], ny = layout.dims[1], nz = layout.dims[2];
   const uint words_x = layout.words_x, slice_words = layout.slice_words;
   const uint gid = get_global_id(0);

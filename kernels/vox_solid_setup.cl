@@ -4,8 +4,9 @@
  * Unlike the surface voxelizer, a triangle below or above the grid still counts: a crossing below the grid
  * flips the parity of the whole column, and the late mode counts every crossing of a column.
  * in:  positions (float4), triangles (uint4: indices, material)
- * out: snapped[t] (voxr_layout.h VoxSnappedTriangle), item_counts[t]; too_large counts triangles the host
- * should have split (must stay 0). shape: one work item per triangle. */
+ * out: snapped[t] (voxr_layout.h VoxSnappedTriangle), item_counts[t]; too_large counts triangles the host should
+ *      have split (must stay 0).
+ * shape: one work item per triangle. */
 #include "voxr_layout.h"
 
 /* Column ranges follow the pixel-centre rule. */

@@ -5,8 +5,8 @@
  * out: dense (dense bits)
  * shape: one work item per x row (j, k), writing the dense words whose first voxel lies in its row (none for
  *        some rows when nx < 32); a word reaching into the next rows is gathered row piece by row piece. */
-#include "vox_solid_bits.h"
 #include "voxr_layout.h"
+#include "vox_solid_bits.h"
 
 #ifndef WG_SIZE
 #define WG_SIZE 64
@@ -16,7 +16,8 @@
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_solid_unpack(
-    VoxSolidLayout layout, __global const uint* padded, __global uint* dense) {
+    VoxSolidLayout layout, __global const uint* padded,
+    __global uint* dense) {
   const uint nx = layout.dims[0], ny = layout.dims[1], nz = layout.dims[2];
   const uint words_x = layout.words_x, slice_words = layout.slice_words;
   const uint row = get_global_id(0);

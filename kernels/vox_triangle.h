@@ -7,6 +7,8 @@
 #ifndef VOX_TRIANGLE_H
 #define VOX_TRIANGLE_H
 
+#include "voxr_layout.h"
+
 #pragma OPENCL FP_CONTRACT OFF
 
 #define VOX_S ((long)VOXR_SUBVOXEL)
