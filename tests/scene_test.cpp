@@ -23,25 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Sets an environment variable for the scope of a test.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const std::string& value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    setenv(name, value.c_str(), 1);
-  }
-  ~ScopedEnv() {
-    if (old_)
-      setenv(name_, old_->c_str(), 1);
-    else
-      unsetenv(name_);
-  }
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
-
 const char* kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 
 std::string scene_error(const std::string& text) {
@@ -315,7 +296,7 @@ TEST(Scene, MeshDirResolvesSharedMeshes) {
   test::TempDir meshes, scenes;
   meshes.write("shared.obj", kTriangleObj);
   scenes.write("local.obj", kTriangleObj);
-  const ScopedEnv env("VOXR_MESH_DIR", meshes.path().string());
+  const test::ScopedEnv env("VOXR_MESH_DIR", meshes.path().string());
   const fs::path file = scenes.write("s.json", R"({"meshes": [{"file": "$VOXR_MESH_DIR/shared.obj"},
       {"file": "shared.obj"}, {"file": "local.obj"}]})");
   const Scene s = load_scene(file);

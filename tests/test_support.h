@@ -8,8 +8,10 @@
 
 #include <atomic>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -43,6 +45,30 @@ TriangleSoup box_soup(glm::vec3 lo, glm::vec3 hi, uint32_t material = 0);
 // Appends the square [lo, hi] x [lo, hi] in the plane y = height (x, z), two triangles sharing a diagonal,
 // facing +y.
 void add_square(TriangleSoup& soup, float height, float lo, float hi, uint32_t material);
+
+// Sets (or, with nullopt, unsets) an environment variable for the scope of a test.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, std::optional<std::string> value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    if (value)
+      setenv(name, value->c_str(), 1);
+    else
+      unsetenv(name);
+  }
+  ~ScopedEnv() {
+    if (old_)
+      setenv(name_, old_->c_str(), 1);
+    else
+      unsetenv(name_);
+  }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
 
 // A fresh folder per test (or per object), removed afterwards.
 class TempDir {

@@ -279,6 +279,27 @@ float ReferenceScene::scene_size() const {
   return impl_->size;
 }
 
+namespace {
+
+// A ray o + t e, t in [t_near, t_far], with no hit yet.
+RTCRayHit embree_ray(const glm::vec3& o, const glm::vec3& e, float t_near, float t_far) {
+  RTCRayHit rh{};
+  rh.ray.org_x = o.x;
+  rh.ray.org_y = o.y;
+  rh.ray.org_z = o.z;
+  rh.ray.dir_x = e.x;
+  rh.ray.dir_y = e.y;
+  rh.ray.dir_z = e.z;
+  rh.ray.tnear = t_near;
+  rh.ray.tfar = t_far;
+  rh.ray.mask = 0xffffffffu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+}  // namespace
+
 SurfaceSample ReferenceScene::intersect(const glm::vec3& origin, const glm::vec3& dir, float t_near,
                                         float t_far) const {
   Impl& m = *impl_;
@@ -293,18 +314,7 @@ SurfaceSample ReferenceScene::intersect(const glm::vec3& origin, const glm::vec3
   uint32_t triangle = VOXR_NO_TRIANGLE;
   float u = 0.0f, v = 0.0f;
   m.for_each_cast(origin, d, [&](RTCScene scene, const glm::vec3& o, const glm::vec3& e) {
-    RTCRayHit rh{};
-    rh.ray.org_x = o.x;
-    rh.ray.org_y = o.y;
-    rh.ray.org_z = o.z;
-    rh.ray.dir_x = e.x;
-    rh.ray.dir_y = e.y;
-    rh.ray.dir_z = e.z;
-    rh.ray.tnear = t_near * len;
-    rh.ray.tfar = t_far * len;
-    rh.ray.mask = 0xffffffffu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = embree_ray(o, e, t_near * len, t_far * len);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     rtcIntersect1(scene, &context, &rh);
@@ -360,18 +370,7 @@ glm::vec3 ReferenceScene::transmittance(const RenderLight& light, const glm::vec
   context.self = self;
   context.hits = &hits;
   m.for_each_cast(point, dir, [&](RTCScene scene, const glm::vec3& o, const glm::vec3& e) {
-    RTCRayHit rh{};
-    rh.ray.org_x = o.x;
-    rh.ray.org_y = o.y;
-    rh.ray.org_z = o.z;
-    rh.ray.dir_x = e.x;
-    rh.ray.dir_y = e.y;
-    rh.ray.dir_z = e.z;
-    rh.ray.tnear = epsilon;
-    rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.ray.mask = 0xffffffffu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = embree_ray(o, e, epsilon, std::numeric_limits<float>::infinity());
     rtcIntersect1(scene, &context.embree, &rh);
   });
   if (hits.empty()) return glm::vec3(1.0f);

@@ -142,8 +142,10 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
   frame.image = ImageRgba(camera.width, camera.height);
   cl_.download(image, frame.image.pixels.data(), pixels * 16, "download image");
   if (options.keep_samples) {
-    frame.samples.resize(pixels);
-    cl_.download(samples_.buffer, frame.samples.data(), pixels * sizeof(SurfaceSample), "download samples");
+    if (frame.samples.empty()) {  // the reference path has them already
+      frame.samples.resize(pixels);
+      cl_.download(samples_.buffer, frame.samples.data(), pixels * sizeof(SurfaceSample), "download samples");
+    }
     std::vector<glm::vec4> t4(pixels);
     cl_.download(transmittance, t4.data(), pixels * 16, "download transmittance");
     cl_.finish("rendering a frame");

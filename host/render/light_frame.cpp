@@ -46,15 +46,6 @@ glm::vec3 LightFrame::to_grid(const glm::vec3& p) const {
                    (params.inv_near - 1.0f / q.z) * params.depth_scale);
 }
 
-float LightFrame::slab_length(uint32_t i, uint32_t j, uint32_t k) const {
-  if (!projective()) return params.voxel_size;
-  const float u = params.u0 + (float(i) + 0.5f) / params.inv_du;
-  const float v = params.v0 + (float(j) + 0.5f) / params.inv_dv;
-  const float z0 = 1.0f / (params.inv_near - float(k) / params.depth_scale);
-  const float z1 = 1.0f / (params.inv_near - float(k + 1) / params.depth_scale);
-  return (z1 - z0) * std::sqrt(1.0f + u * u + v * v);
-}
-
 std::string LightFrame::describe() const {
   const glm::uvec3 d(params.dims[0], params.dims[1], params.dims[2]);
   if (!projective())

@@ -38,8 +38,6 @@ struct LightFrame {
   float mean_slab_length() const {
     return projective() ? (far_depth - near_depth) / float(params.dims[2]) : params.voxel_size;
   }
-  // World length of column (i, j)'s centre ray inside slab k.
-  float slab_length(uint32_t i, uint32_t j, uint32_t k) const;
   // "frustum 256 x 198 x 256, depth 3.1..9.4, 71 x 55 degrees" or "orthographic 256 x 240 x 131, voxel
   // 0.012".
   std::string describe() const;
