@@ -159,6 +159,48 @@ typedef struct SurfaceSample {
   float pad[2];
 } SurfaceSample;
 
+/* A SurfaceSample found by marching a voxel grid (the end of a voxel refraction path): no triangle, but a
+ * surface all the same (position, normal, material from the voxel). Only VOXR_NO_TRIANGLE means "nothing". */
+#define VOXR_VOXEL_HIT 0xfffffffeu
+
+/* ---- Refraction (host/render/refraction_method.h, kernels/refraction.h) ----
+ * One record per pixel describing the path its camera ray took through dielectrics, written by every
+ * refraction method (voxel, image-space, the Embree reference) and read by shade.cl:
+ *   pixel = fresnel * environment(reflect_direction) + throughput * L(end)
+ * where `end` is a SurfaceSample (the opaque surface the path ends on, or VOXR_NO_TRIANGLE: the environment
+ * in exit_direction). A pixel that sees no dielectric has events 0, throughput 1, fresnel 0 and its end
+ * sample is the primary one; exit_direction is then the camera ray's direction (what a miss shows). */
+#define VOXR_PATH_EVENTS_MASK 0xffu /* interfaces met: refractions and total internal reflections */
+#define VOXR_PATH_TIR (1u << 8)     /* at least one total internal reflection */
+#define VOXR_PATH_ENV (1u << 9)     /* the path ends in the environment */
+#define VOXR_PATH_LOST (1u << 10)   /* the event limit was reached: the path contributes nothing */
+#define VOXR_PATH_MAX_EVENTS 32
+
+typedef struct RefractionPath {
+  float throughput[3];        /* RGB weight of L(end): product of (1 - F) per refraction and Beer-Lambert */
+  uint events;                /* VOXR_PATH_* */
+  float reflect_direction[3]; /* unit, world: the first surface's mirror direction (fresnel > 0) */
+  float fresnel;              /* Schlick F at the first surface (0 where the pixel sees no dielectric) */
+  float exit_position[3];     /* anchor-relative world: where the path left its last interface */
+  float pad0;
+  float
+      exit_direction[3]; /* unit, world: the direction the path leaves with (the camera ray's if events 0) */
+  float pad1;
+} RefractionPath;
+
+/* What refract_voxel.cl needs besides the grid view (host/render/voxel_refraction.h). The grid is axis
+ * aligned: world (anchor-relative) = origin + voxel_size * grid units. */
+typedef struct VoxelRefractParams {
+  float origin[3];
+  float voxel_size;
+  uint two_surface;    /* 1: voxel-two, 0: voxel-multi */
+  uint step_dda;       /* 1: 3-D DDA, 0: the papers' step along the dominant axis */
+  uint smooth_normals; /* 1: 3x3x3 weighted normals, 0: the voxel's own */
+  float cos_threshold; /* cos of the angle threshold between a run's normals */
+  uint max_steps;      /* voxels visited at most per path */
+  uint pad[3];
+} VoxelRefractParams;
+
 /* Where a receiver finds its column and slab in a light's grid (host/render/light_frame.h). Orthographic
  * (directional light): grid = to_light * p. Frustum (point light): q = to_light * p is the point in the
  * light's view (z along the view, world units) and grid = ((q.x / q.z - u0) * inv_du,
@@ -271,6 +313,12 @@ typedef struct RenderCamera {
   SIZE(SurfaceSample) OFFSET(SurfaceSample, position) OFFSET(SurfaceSample, triangle)                     \
   OFFSET(SurfaceSample, normal) OFFSET(SurfaceSample, material) OFFSET(SurfaceSample, geometric_normal)   \
   OFFSET(SurfaceSample, distance) OFFSET(SurfaceSample, barycentric)                                      \
+  SIZE(RefractionPath) OFFSET(RefractionPath, throughput) OFFSET(RefractionPath, events)                 \
+  OFFSET(RefractionPath, reflect_direction) OFFSET(RefractionPath, fresnel)                               \
+  OFFSET(RefractionPath, exit_position) OFFSET(RefractionPath, exit_direction)                            \
+  SIZE(VoxelRefractParams) OFFSET(VoxelRefractParams, origin) OFFSET(VoxelRefractParams, voxel_size)      \
+  OFFSET(VoxelRefractParams, two_surface) OFFSET(VoxelRefractParams, cos_threshold)                       \
+  OFFSET(VoxelRefractParams, max_steps)                                                                   \
   SIZE(ShadowFrame) OFFSET(ShadowFrame, to_light) OFFSET(ShadowFrame, dims)                               \
   OFFSET(ShadowFrame, projective) OFFSET(ShadowFrame, u0) OFFSET(ShadowFrame, inv_dv)                     \
   OFFSET(ShadowFrame, depth_scale) OFFSET(ShadowFrame, voxel_size)                                        \

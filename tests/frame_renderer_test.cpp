@@ -11,6 +11,7 @@
 #include "metrics/image_metrics.h"
 #include "metrics/shadow_receivers.h"
 #include "reference/reference_scene.h"
+#include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
 #include "test_support.h"
@@ -28,7 +29,7 @@ class Frames {
   explicit Frames(Scene scene, uint32_t width = 96, uint32_t height = 72)
       : materials_(scene.materials), soup_(take_scene_triangles(scene)), renderer_(test::runtime()) {
     camera_ = make_camera_frame(scene.camera, soup_.anchor, soup_.bounds(), width, height);
-    light_ = render_light(scene.light, scene.environment, soup_.anchor);
+    light_ = render_light(scene.light, make_environment_map(scene.environment).mean(), soup_.anchor);
     renderer_.set_scene(soup_, materials_);
     RenderOptions none;
     none.shadows = ShadowMethod::kNone;

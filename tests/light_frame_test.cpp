@@ -15,14 +15,14 @@ RenderLight directional(glm::vec3 d) {
   Light l;
   l.type = "directional";
   l.direction = d;
-  return render_light(l, Environment{}, glm::dvec3(0.0));
+  return render_light(l, kDefaultEnvironment, glm::dvec3(0.0));
 }
 
 RenderLight point(glm::vec3 p) {
   Light l;
   l.type = "point";
   l.position = p;
-  return render_light(l, Environment{}, glm::dvec3(0.0));
+  return render_light(l, kDefaultEnvironment, glm::dvec3(0.0));
 }
 
 TEST(LightFrame, AFloorUnderEverythingCastsNothingSoTheGridFitsTheLeaf) {

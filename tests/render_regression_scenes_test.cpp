@@ -8,6 +8,7 @@
 
 #include "core/default_scene.h"
 #include "core/scene.h"
+#include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
 #include "render_regression.h"
@@ -29,7 +30,10 @@ ImageRgba render_small(const Scene& source, ShadowMethod method, uint32_t res,
   o.mode = mode;
   renderer.prepare(o);
   const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, soup.bounds(), 96, 72);
-  return renderer.render(render_light(scene.light, scene.environment, soup.anchor), camera, o).image;
+  return renderer
+      .render(render_light(scene.light, make_environment_map(scene.environment).mean(), soup.anchor), camera,
+              o)
+      .image;
 }
 
 Scene scene_file(const std::string& name) {

@@ -36,7 +36,7 @@ Material sheet(glm::vec3 t) {
 std::vector<glm::vec3> shadow_at(const ShadowCase& c, const std::vector<glm::vec3>& points, uint32_t res,
                                  const ShadowMapOptions& options, const Bounds* receivers = nullptr) {
   ClRuntime& cl = test::runtime();
-  const RenderLight light = render_light(c.light, Environment{}, c.soup.anchor);
+  const RenderLight light = render_light(c.light, kDefaultEnvironment, c.soup.anchor);
   const LightFrame frame = fit_light_frame(light, receivers ? *receivers : c.soup.bounds(), c.soup, res);
   const std::vector<RenderMaterial> mats = render_materials(c.materials);
   cl::Buffer materials = cl.buffer(mats.size() * sizeof(RenderMaterial), "materials");

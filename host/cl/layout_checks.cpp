@@ -19,6 +19,8 @@ static_assert(sizeof(VoxGridView) == 80);
 static_assert(sizeof(RenderMaterial) == 48);
 static_assert(sizeof(RenderLight) == 64);
 static_assert(sizeof(SurfaceSample) == 64);
+static_assert(sizeof(RefractionPath) == 64);
+static_assert(sizeof(VoxelRefractParams) == 48);
 static_assert(sizeof(ShadowFrame) == 96);
 static_assert(sizeof(RasterParams) == 96);
 static_assert(sizeof(RasterPrim) == 96);

@@ -22,6 +22,7 @@
 #include "metrics/image_metrics.h"
 #include "metrics/shadow_receivers.h"
 #include "reference/reference_scene.h"
+#include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
 #include "render/shade_host.h"
@@ -103,7 +104,8 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
     const TriangleSoup soup = take_scene_triangles(scene);
     validate_soup(soup, scene.source);
     const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, soup.bounds(), width, height);
-    const RenderLight light = render_light(scene.light, scene.environment, soup.anchor);
+    const RenderLight light =
+        render_light(scene.light, make_environment_map(scene.environment).mean(), soup.anchor);
     const std::vector<RenderMaterial> render_mats = render_materials(materials);
     const std::string label = scene_label(scene_name);
     fmt::print("{}: {} triangles, {}x{}, load {:.2f}\n", label, soup.triangle_count(), width, height,

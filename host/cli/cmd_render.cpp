@@ -31,6 +31,7 @@
 #include "metrics/shadow_receivers.h"
 #include "reference/reference_renderer.h"
 #include "reference/reference_scene.h"
+#include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
 #include "render/shade_host.h"
@@ -104,7 +105,8 @@ int run_render(const RenderArgs& args) {
   const Bounds bounds = soup.bounds();
   const uint32_t width = size.x ? size.x : scene.camera.width, height = size.y ? size.y : scene.camera.height;
   const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, bounds, width, height);
-  const RenderLight light = render_light(scene.light, scene.environment, soup.anchor);
+  const RenderLight light =
+      render_light(scene.light, make_environment_map(scene.environment).mean(), soup.anchor);
   const std::vector<RenderMaterial> render_mats = render_materials(materials);
   const double load_ms = ms_since(load_start);
 

@@ -407,8 +407,24 @@ Scene parse_scene(std::string_view json_text, const std::string& label,
   if (const json* light = root.get("light")) scene.light = parse_light(*light, label);
   if (const json* camera = root.get("camera")) scene.camera = parse_camera(*camera, label);
   if (const json* env = root.get("environment")) {
-    const JsonObjectReader in(*env, label, "environment", {"color"});
-    scene.environment.color = non_negative(in, "color", std::nullopt);
+    const JsonObjectReader in(*env, label, "environment", {"color", "image", "procedural"});
+    if (int(in.has("color")) + int(in.has("image")) + int(in.has("procedural")) != 1)
+      fail("{}: 'environment' needs exactly one of 'color', 'image' and 'procedural'", label);
+    if (in.has("color")) scene.environment.color = non_negative(in, "color", std::nullopt);
+    if (in.has("image")) {
+      const std::filesystem::path image(in.string("image"));
+      const std::filesystem::path resolved = image.is_absolute() ? image : base_dir / image;
+      std::error_code ec;
+      if (!std::filesystem::exists(resolved, ec))
+        in.fail_key("image", fmt::format("names '{}', which does not exist", resolved.string()));
+      scene.environment.image = resolved.string();
+    }
+    if (in.has("procedural")) {
+      scene.environment.procedural = in.string("procedural");
+      if (scene.environment.procedural != "checker")
+        in.fail_key("procedural",
+                    fmt::format("must be \"checker\" (got \"{}\")", scene.environment.procedural));
+    }
   }
   if (const json* grid = root.get("grid")) {
     scene.grid = parse_grid(*grid, label);

@@ -36,7 +36,10 @@
 //                "up": [0, 1, 0],                     not parallel to look_at - position
 //                "fov_deg": 45,                       vertical field of view in (0, 180)
 //                "width": 512, "height": 512},        image size, 1..16384
-//     "environment": {"color": [0.5, 0.5, 0.5]},      required when "environment" is given, >= 0
+//     "environment": {"color": [0.5, 0.5, 0.5]},      exactly one of: color >= 0,
+//                    {"image": "sky.exr"},            an equirectangular .exr/.hdr/.png (relative to the
+//                                                     scene file), row 0 straight up, centre column -z,
+//                    {"procedural": "checker"},       or the built-in lat-long checker
 //     "grid": {"res": 256,                            voxels along the longest axis (1..16384), or
 //              "dims": [256, 128, 256],               exact dimensions (not both)
 //              "bounds": [x0, y0, z0, x1, y1, z1],    world box, x0 < x1 etc.; default: fitted to the scene
@@ -84,8 +87,12 @@ struct Camera {
   uint32_t width = 512, height = 512;
 };
 
+// What rays leaving the scene see (render/environment_map.h reads it): one of a constant colour, an
+// equirectangular image file (resolved path) or a procedural environment ("checker").
 struct Environment {
   glm::vec3 color{0.5f};
+  std::string image;       // .exr, .hdr or .png, latitude-longitude, row 0 straight up
+  std::string procedural;  // "checker" or empty
 };
 
 inline constexpr glm::vec3 kDefaultEnvironment{0.5f};

@@ -31,16 +31,43 @@ bool uses_light_maps(ShadowMethod m) {
 
 }  // namespace
 
-FrameRenderer::FrameRenderer(ClRuntime& cl) : cl_(cl), rasterizer_(cl), shadow_map_(cl), light_maps_(cl) {}
+FrameRenderer::FrameRenderer(ClRuntime& cl)
+    : cl_(cl),
+      rasterizer_(cl),
+      shadow_map_(cl),
+      light_maps_(cl),
+      voxel_refraction_(cl),
+      image_space_(cl, rasterizer_) {}
 FrameRenderer::~FrameRenderer() = default;
 
 void FrameRenderer::prepare(const RenderOptions& options) {
   std::vector<ProgramSpec> specs = rasterizer_.programs();
   if (uses_light_maps(options.shadows))
     for (const ProgramSpec& p : light_maps_.programs()) specs.push_back(p);
+  if (options.refraction.method == RefractionMethod::kImageSpace)
+    for (const ProgramSpec& p : image_space_.programs()) specs.push_back(p);
   specs.push_back({"shade.cl", {}});
+  specs.push_back({"refract_none.cl", {}});
   cl_.build_programs(specs);
   if (uses_voxel_grid(options.shadows)) shadow_map_.prepare(shadow_map_options(options));
+  if (is_voxel_refraction(options.refraction.method)) voxel_refraction_.prepare(options.refraction);
+}
+
+void FrameRenderer::set_environment(const EnvironmentMap& environment) {
+  upload_environment(environment);
+  environment_given_ = true;
+}
+
+void FrameRenderer::upload_environment(const EnvironmentMap& environment) {
+  const size_t bytes = environment.pixels().size() * sizeof(glm::vec4);
+  environment_ = cl_.buffer(bytes, "environment");
+  cl_.upload(environment_, environment.pixels().data(), bytes, "upload environment");
+  environment_size_ = {environment.width(), environment.height()};
+}
+
+void FrameRenderer::set_inward_distances(const std::vector<float>& d_n) {
+  image_space_.set_inward_distances(d_n);
+  inward_distances_set_ = true;
 }
 
 void FrameRenderer::set_scene(const TriangleSoup& soup, const std::vector<Material>& materials) {
@@ -57,6 +84,8 @@ void FrameRenderer::set_scene(const TriangleSoup& soup, const std::vector<Materi
   materials_buffer_ = cl_.buffer(mats.size() * sizeof(RenderMaterial), "materials");
   cl_.upload(materials_buffer_, mats.data(), mats.size() * sizeof(RenderMaterial), "upload materials");
   vertex_normals_ = upload_vertex_normals(cl_, vertex_normals(soup));
+  inward_distances_set_ = false;
+  voxel_refraction_.set_scene(soup);
 }
 
 RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame& camera,
@@ -103,22 +132,58 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
   rasterizer_.resolve(*mesh_, vertex_normals_, camera, visibility_.buffer, samples_);
   cl::Buffer& transmittance = transmittance_.ensure(cl_, pixels * 16, "transmittance");
 
+  // Where each pixel's path through the dielectrics ends: the shadows are looked up and shading is done
+  // there.
+  cl::Buffer& paths = paths_.ensure(cl_, pixels * sizeof(RefractionPath), "refraction paths");
+  const cl::Buffer* ends = &samples_.buffer;
+  switch (options.refraction.method) {
+    case RefractionMethod::kNone: {
+      cl::Kernel identity = cl_.kernel("refract_none.cl", "identity_paths");
+      cl_.launch("refraction", identity, pixels, kGroup, make_render_camera(camera), paths);
+      break;
+    }
+    case RefractionMethod::kVoxelMulti:
+    case RefractionMethod::kVoxelTwo: {
+      cl::Buffer& e = ends_.ensure(cl_, pixels * sizeof(SurfaceSample), "refraction ends");
+      voxel_refraction_.build(options.refraction);
+      voxel_refraction_.trace(camera, samples_.buffer, materials_buffer_, material_count_, options.refraction,
+                              e, paths);
+      st.refraction_grid = voxel_refraction_.grid().spec;
+      st.refraction_bytes = voxel_refraction_.grid().device_bytes();
+      ends = &e;
+      break;
+    }
+    case RefractionMethod::kImageSpace: {
+      if (!inward_distances_set_)
+        fail("image-space refraction needs the inward distances (set_inward_distances)");
+      cl::Buffer& e = ends_.ensure(cl_, pixels * sizeof(SurfaceSample), "refraction ends");
+      image_space_.trace(*mesh_, vertex_normals_, camera, materials_buffer_, material_count_, samples_.buffer,
+                         e, paths);
+      ends = &e;
+      break;
+    }
+    case RefractionMethod::kReference:
+    case RefractionMethod::kReferenceFull:
+      fail("the {} refraction renders on the host (render_refraction_reference), not in a device frame",
+           refraction_method_info(options.refraction.method).name);
+  }
+
   RenderedFrame frame;
   switch (options.shadows) {
     case ShadowMethod::kVoxel:
     case ShadowMethod::kUniform:
-      shadow_map_.lookup(samples_.buffer, uint32_t(pixels), materials_buffer_, material_count_, light,
+      shadow_map_.lookup(*ends, uint32_t(pixels), materials_buffer_, material_count_, light,
                          shadow_map_options(options), transmittance);
       break;
     case ShadowMethod::kFilter:
     case ShadowMethod::kOpaque:
-      light_maps_.lookup(samples_.buffer, uint32_t(pixels), materials_buffer_, material_count_, light,
-                         options.bias, options.normal_offset, transmittance);
+      light_maps_.lookup(*ends, uint32_t(pixels), materials_buffer_, material_count_, light, options.bias,
+                         options.normal_offset, transmittance);
       break;
     case ShadowMethod::kReference: {
       if (!host_transmittance) fail("the reference shadows need the reference renderer");
       frame.samples.resize(pixels);
-      cl_.download(samples_.buffer, frame.samples.data(), pixels * sizeof(SurfaceSample), "download samples");
+      cl_.download(*ends, frame.samples.data(), pixels * sizeof(SurfaceSample), "download samples");
       cl_.finish("resolving the camera's samples");
       const auto host_start = Clock::now();
       const std::vector<glm::vec3> t = host_transmittance(frame.samples);
@@ -137,15 +202,21 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
 
   cl::Buffer& image = image_.ensure(cl_, pixels * 16, "image");
   cl::Kernel shade = cl_.kernel("shade.cl", "shade");
-  cl_.launch("shade", shade, pixels, kGroup, samples_.buffer, transmittance, cl_uint(pixels),
-             materials_buffer_, cl_uint(material_count_), light, image);
+  if (!environment_given_)  // the light's ambient colour, which may change from frame to frame
+    upload_environment(
+        EnvironmentMap::constant(glm::vec3(light.ambient[0], light.ambient[1], light.ambient[2])));
+  cl_.launch("shade", shade, pixels, kGroup, *ends, transmittance, paths, cl_uint(pixels), materials_buffer_,
+             cl_uint(material_count_), light, environment_, cl_uint(environment_size_.x),
+             cl_uint(environment_size_.y), image);
   frame.image = ImageRgba(camera.width, camera.height);
   cl_.download(image, frame.image.pixels.data(), pixels * 16, "download image");
   if (options.keep_samples) {
     if (frame.samples.empty()) {  // the reference path has them already
       frame.samples.resize(pixels);
-      cl_.download(samples_.buffer, frame.samples.data(), pixels * sizeof(SurfaceSample), "download samples");
+      cl_.download(*ends, frame.samples.data(), pixels * sizeof(SurfaceSample), "download samples");
     }
+    frame.paths.resize(pixels);
+    cl_.download(paths, frame.paths.data(), pixels * sizeof(RefractionPath), "download paths");
     std::vector<glm::vec4> t4(pixels);
     cl_.download(transmittance, t4.data(), pixels * 16, "download transmittance");
     cl_.finish("rendering a frame");

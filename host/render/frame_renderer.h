@@ -20,12 +20,16 @@
 #include "core/material.h"
 #include "core/triangle_soup.h"
 #include "render/camera_frame.h"
+#include "render/environment_map.h"
 #include "render/image_rgba.h"
+#include "render/image_space_refraction.h"
 #include "render/light_frame.h"
 #include "render/light_space_maps.h"
+#include "render/refraction_method.h"
 #include "render/shadow_method.h"
 #include "render/transparent_shadow_map.h"
 #include "render/visibility_rasterizer.h"
+#include "render/voxel_refraction.h"
 #include "voxelize/device_mesh.h"
 
 namespace voxr {
@@ -36,7 +40,9 @@ struct RenderOptions {
   RasterMode mode = RasterMode::kCenter;  // voxel: the light voxelizer's rule
   float bias = kDefaultShadowBias;        // slabs (or depth-map texels) towards the light
   float normal_offset = kDefaultNormalOffset;  // columns off the receiver's surface
-  bool keep_samples = false;                   // read back the samples and their transmittance too
+  // none, voxel-multi, voxel-two or image-space (the references render on the host: reference_refraction.h)
+  RefractionOptions refraction;
+  bool keep_samples = false;  // read back the samples, their transmittance and the paths too
 };
 
 // Transmittance computed on the host for samples read back (the Embree reference): one RGB per sample.
@@ -49,12 +55,17 @@ struct FrameStats {
   double frame_ms = 0.0;                   // wall time of render(), from its start to the image on the host
   uint64_t device_bytes = 0;               // the shadow method's grid or maps
   uint64_t light_triangles = 0;            // triangles voxelized or rasterized from the light
+  GridSpec refraction_grid;                // voxel refraction: the scene's grid
+  uint64_t refraction_bytes = 0;           // voxel refraction: the grid's channels
 };
 
 struct RenderedFrame {
   ImageRgba image;
-  std::vector<SurfaceSample> samples;    // keep_samples: one per pixel, row 0 at the top
-  std::vector<glm::vec3> transmittance;  // keep_samples: the shadow method's, per pixel
+  // keep_samples: one per pixel, row 0 at the top: where each pixel's path ends (the primary sample where
+  // it meets no dielectric), the shadow method's transmittance from there, the path
+  std::vector<SurfaceSample> samples;
+  std::vector<glm::vec3> transmittance;
+  std::vector<RefractionPath> paths;
 };
 
 class FrameRenderer {
@@ -70,7 +81,14 @@ class FrameRenderer {
   // Throws voxr::Error for a material id out of range.
   void set_scene(const TriangleSoup& soup, const std::vector<Material>& materials);
 
-  // Renders one frame. `host_transmittance` is required for ShadowMethod::kReference.
+  // What rays leaving the scene see (uploaded once). Without it, a constant environment of the light's
+  // ambient colour.
+  void set_environment(const EnvironmentMap& environment);
+  // Wyman's d_N per vertex of the scene's soup (inward_distances), needed by image-space refraction.
+  void set_inward_distances(const std::vector<float>& d_n);
+
+  // Renders one frame. `host_transmittance` is required for ShadowMethod::kReference. Throws voxr::Error for
+  // a host-side refraction method (the references).
   RenderedFrame render(const RenderLight& light, const CameraFrame& camera, const RenderOptions& options,
                        const HostTransmittance& host_transmittance = {}, FrameStats* stats = nullptr);
 
@@ -79,12 +97,20 @@ class FrameRenderer {
   VisibilityRasterizer rasterizer_;
   TransparentShadowMap shadow_map_;
   LightSpaceMaps light_maps_;
+  VoxelRefraction voxel_refraction_;
+  ImageSpaceRefraction image_space_;
   const TriangleSoup* soup_ = nullptr;
   std::vector<Material> materials_;
   uint32_t material_count_ = 0;
   std::unique_ptr<DeviceMesh> mesh_;
   cl::Buffer materials_buffer_, vertex_normals_;
-  GrowingBuffer visibility_, samples_, transmittance_, image_;
+  GrowingBuffer visibility_, samples_, transmittance_, image_, ends_, paths_;
+  cl::Buffer environment_;
+  glm::uvec2 environment_size_{0, 0};
+  bool environment_given_ = false;
+  bool inward_distances_set_ = false;
+
+  void upload_environment(const EnvironmentMap& environment);
 };
 
 }  // namespace voxr

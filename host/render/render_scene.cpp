@@ -25,7 +25,7 @@ std::vector<RenderMaterial> render_materials(const std::vector<Material>& materi
   return out;
 }
 
-RenderLight render_light(const Light& light, const Environment& environment, const glm::dvec3& anchor) {
+RenderLight render_light(const Light& light, const glm::vec3& ambient, const glm::dvec3& anchor) {
   RenderLight r{};
   r.directional = light.type == "directional" ? 1u : 0u;
   const glm::vec3 position(glm::dvec3(light.position) - anchor);
@@ -39,7 +39,7 @@ RenderLight render_light(const Light& light, const Environment& environment, con
     r.position[c] = position[c];
     r.direction[c] = direction[c];
     r.intensity[c] = light.intensity[c];
-    r.ambient[c] = environment.color[c];
+    r.ambient[c] = ambient[c];
   }
   return r;
 }

@@ -14,9 +14,10 @@ namespace voxr {
 // One RenderMaterial per scene material, same order (material ids index both).
 std::vector<RenderMaterial> render_materials(const std::vector<Material>& materials);
 
-// The light with its position relative to `anchor` and the environment colour as the ambient term.
+// The light with its position relative to `anchor` and `ambient` (the environment's mean radiance,
+// EnvironmentMap::mean) as the ambient term.
 // A directional light's direction is normalized. Throws voxr::Error for a zero direction.
-RenderLight render_light(const Light& light, const Environment& environment, const glm::dvec3& anchor);
+RenderLight render_light(const Light& light, const glm::vec3& ambient, const glm::dvec3& anchor);
 
 // Unit vector from `point` (anchor-relative) towards the light, and the irradiance the light gives there
 // before shadowing (point: intensity / d^2, directional: intensity).

@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "render/environment_map.h"
 #include "render/image_rgba.h"
 #include "voxr_layout.h"
 
@@ -22,5 +23,14 @@ namespace voxr {
 ImageRgba shade_samples(std::span<const SurfaceSample> samples, std::span<const glm::vec3> transmittance,
                         const std::vector<RenderMaterial>& materials, const RenderLight& light,
                         uint32_t width, uint32_t height);
+
+// The image of refraction paths (voxr_layout.h RefractionPath), exactly as kernels/shade.cl: per pixel
+// fresnel * environment(reflect_direction) + throughput * L(end), where L(end) is environment(exit_direction)
+// for an end without a surface and shade_samples' value otherwise. All spans width * height long (throws
+// voxr::Error otherwise, or for a material id out of range).
+ImageRgba shade_paths(std::span<const SurfaceSample> ends, std::span<const glm::vec3> transmittance,
+                      std::span<const RefractionPath> paths, const std::vector<RenderMaterial>& materials,
+                      const RenderLight& light, const EnvironmentMap& environment, uint32_t width,
+                      uint32_t height);
 
 }  // namespace voxr

@@ -1,0 +1,21 @@
+// Wyman 2005 (Interactive Image-Space Refraction of Nearby Geometry, §3): d_N, per vertex the distance
+// through the object along the inverted vertex normal, precomputed offline by ray casting, as the paper does.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+#include "core/triangle_soup.h"
+#include "reference/reference_scene.h"
+
+namespace voxr {
+
+// One distance per vertex of `soup` (soup.positions order, world units): from the vertex along
+// -vertex_normals[v] to the first surface of the same dielectric (ReferenceScene::intersect from a small
+// offset, so the vertex's own triangles are not hit). 0 for vertices of no dielectric triangle and where the
+// ray finds nothing. `vertex_normals` (render/vertex_normals.h) has one unit normal per vertex.
+std::vector<float> inward_distances(const ReferenceScene& scene, const TriangleSoup& soup,
+                                    const std::vector<glm::vec3>& vertex_normals);
+
+}  // namespace voxr

@@ -1,0 +1,83 @@
+// The refraction methods `voxr render --refraction` offers, their step rules and normal kinds, in tables.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+namespace voxr {
+
+enum class RefractionMethod { kVoxelMulti, kVoxelTwo, kImageSpace, kReference, kReferenceFull, kNone };
+// How a voxel march advances: the papers' fixed step (one voxel along the dominant axis, length h / cos
+// theta) or the exact voxel traversal (3-D DDA, Amanatides & Woo 1987).
+enum class StepRule { kPapers, kDda };
+// Where a boundary voxel's normal comes from: the voxel's own normal-sum channel (the papers), or the
+// normal sums of its 3x3x3 neighbourhood of the same material weighted by distance to the hit (smooth).
+enum class NormalKind { kVoxel, kSmooth };
+
+struct RefractionMethodInfo {
+  RefractionMethod method;
+  const char* name;
+  const char* summary;
+};
+inline constexpr std::array<RefractionMethodInfo, 6> kRefractionMethods = {{
+    {RefractionMethod::kVoxelMulti, "voxel-multi",
+     "Chang & Lai PG 2011: Snell-law marching through the voxels, refracting at every boundary"},
+    {RefractionMethod::kVoxelTwo, "voxel-two",
+     "Chang & Lai TR 1688: exact front surface, back surface found by marching, two refractions"},
+    {RefractionMethod::kImageSpace, "image-space",
+     "Wyman 2005: front/back depth and normal buffers, d_V/d_N distance, nearby geometry by iteration"},
+    {RefractionMethod::kReference, "reference",
+     "exact, matched: Embree Whitted tracing of the refracted path with the voxel methods' model"},
+    {RefractionMethod::kReferenceFull, "reference-full",
+     "exact, full: Embree Whitted tracing of reflection and refraction at every interface, exact Fresnel"},
+    {RefractionMethod::kNone, "none", "no refraction: dielectrics shaded flat"},
+}};
+
+struct StepRuleInfo {
+  StepRule rule;
+  const char* name;
+  const char* summary;
+};
+inline constexpr std::array<StepRuleInfo, 2> kStepRules = {{
+    {StepRule::kPapers, "papers", "fixed step h / cos theta along the dominant axis (may skip corners)"},
+    {StepRule::kDda, "dda", "exact voxel traversal (3-D DDA): every voxel the ray passes through"},
+}};
+
+struct NormalKindInfo {
+  NormalKind kind;
+  const char* name;
+  const char* summary;
+};
+inline constexpr std::array<NormalKindInfo, 2> kNormalKinds = {{
+    {NormalKind::kVoxel, "voxel", "the voxel's normal sum (the papers)"},
+    {NormalKind::kSmooth, "smooth", "normal sums of the 3x3x3 neighbours, weighted by distance to the hit"},
+}};
+
+const RefractionMethodInfo& refraction_method_info(RefractionMethod method);
+const StepRuleInfo& step_rule_info(StepRule rule);
+const NormalKindInfo& normal_kind_info(NormalKind kind);
+// Each throws voxr::Error naming the unknown value and listing the known ones.
+RefractionMethod parse_refraction_method(std::string_view name);
+StepRule parse_step_rule(std::string_view name);
+NormalKind parse_normal_kind(std::string_view name);
+
+// Whether `method` marches the voxel grid / runs on the host with Embree.
+inline bool is_voxel_refraction(RefractionMethod m) {
+  return m == RefractionMethod::kVoxelMulti || m == RefractionMethod::kVoxelTwo;
+}
+inline bool is_reference_refraction(RefractionMethod m) {
+  return m == RefractionMethod::kReference || m == RefractionMethod::kReferenceFull;
+}
+
+struct RefractionOptions {
+  RefractionMethod method = RefractionMethod::kNone;
+  uint32_t resolution = 256;  // voxel methods: voxels along the scene's longest side
+  StepRule step = StepRule::kDda;
+  NormalKind normals = NormalKind::kSmooth;
+  // A boundary voxel within the run just refracted at is a new interface only when its normal turns more
+  // than this from the last refraction normal (PG 2011's angle threshold), in degrees.
+  float angle_threshold_deg = 60.0f;
+};
+
+}  // namespace voxr

@@ -1,0 +1,78 @@
+#include "render/voxel_refraction.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "grid/channel_table.h"
+#include "render/visibility_rasterizer.h"
+#include "voxr_layout.h"
+
+namespace voxr {
+
+namespace {
+
+constexpr size_t kGroup = 64;
+
+// Conservative voxelization: a surface leaves no gap a march could slip through (centre mode leaves holes
+// where triangles are steep to the slicing axis).
+VoxelizeOptions voxelize_options() {
+  VoxelizeOptions v;
+  v.method = VoxelizeMethod::kHybrid;
+  v.mode = RasterMode::kConservative;
+  v.channels = ChannelSet::parse("occ,normal,material");
+  return v;
+}
+
+}  // namespace
+
+VoxelRefraction::VoxelRefraction(ClRuntime& cl) : cl_(cl), voxelizer_(cl) {}
+VoxelRefraction::~VoxelRefraction() = default;
+
+void VoxelRefraction::prepare(const RefractionOptions&) {
+  voxelizer_.prepare(voxelize_options());
+  cl_.build_programs({{"refract_voxel.cl", channel_defines()}});
+}
+
+void VoxelRefraction::set_scene(const TriangleSoup& soup) {
+  soup_ = &soup;
+  mesh_.reset();
+}
+
+void VoxelRefraction::build(const RefractionOptions& options) {
+  if (soup_ == nullptr) fail("voxel refraction: no scene was set");
+  if (options.resolution < 2 || options.resolution > kMaxGridDim)
+    fail("--res: the refraction grid needs 2..{} voxels along its longest side (got {})", kMaxGridDim,
+         options.resolution);
+  GridRequest request;
+  request.resolution = options.resolution;
+  const GridSpec spec = fit_grid(soup_->bounds(), request, soup_->anchor);
+  // The split mesh depends on the grid only: reuse it while the scene and the grid stay.
+  if (!mesh_ || mesh_grid_.dims != spec.dims || mesh_grid_.voxel_size != spec.voxel_size ||
+      mesh_grid_.origin != spec.origin) {
+    mesh_ = std::make_unique<DeviceMesh>(upload_mesh(cl_, *soup_, spec, SplitCull::kGrid));
+    mesh_grid_ = spec;
+  }
+  voxelizer_.run(*mesh_, spec, voxelize_options(), grid_);
+  if (!grid_.has_rank_index) build_rank_index(cl_, grid_);
+}
+
+void VoxelRefraction::trace(const CameraFrame& camera, const cl::Buffer& primary_samples,
+                            const cl::Buffer& materials, uint32_t material_count,
+                            const RefractionOptions& options, cl::Buffer& end_samples, cl::Buffer& paths) {
+  VOXR_CHECK(material_count > 0);
+  const GridSpec& spec = grid_.spec;
+  VoxelRefractParams p{};
+  for (int a = 0; a < 3; ++a) p.origin[a] = spec.origin[a];
+  p.voxel_size = spec.voxel_size;
+  p.two_surface = options.method == RefractionMethod::kVoxelTwo ? 1u : 0u;
+  p.step_dda = options.step == StepRule::kDda ? 1u : 0u;
+  p.smooth_normals = options.normals == NormalKind::kSmooth ? 1u : 0u;
+  p.cos_threshold = std::cos(options.angle_threshold_deg * float(M_PI) / 180.0f);
+  p.max_steps = 4 * (spec.dims.x + spec.dims.y + spec.dims.z);
+  cl::Kernel kernel = cl_.kernel("refract_voxel.cl", "refract_voxel", channel_defines());
+  const uint64_t pixels = uint64_t(camera.width) * camera.height;
+  cl_.launch("refraction", kernel, pixels, kGroup, grid_.view_args(cl_), make_render_camera(camera),
+             primary_samples, materials, cl_uint(material_count), p, end_samples, paths);
+}
+
+}  // namespace voxr

@@ -1,0 +1,240 @@
+/* refract_voxel.cl — voxel refraction (host/render/voxel_refraction.h): Chang & Lai TR 1688 §5 (two
+ * surfaces) and PG 2011 §5 (multiple surfaces, Snell-law marching). One work item per pixel: a pixel whose
+ * primary sample is a dielectric refracts there with the interpolated normal (exact), then marches the
+ * scene's voxel grid; every other pixel gets its identity path. The path model is refraction.h's.
+ *
+ * Grid units throughout the march (voxel (i, j, k) = [i, i+1] x [j, j+1] x [k, k+1]); the grid is axis
+ * aligned, so directions are the same in world and grid frames and lengths scale by voxel_size. */
+#include "grid_view.h"
+#include "refraction_path.h"
+
+#ifndef PATH_GROUP
+#define PATH_GROUP 64
+#endif
+
+#define MAX_MEDIA 4 /* nested dielectrics tracked */
+
+/* The voxel's unit normal, or the normals of its 3x3x3 neighbours of the same material weighted by how
+ * close their centres are to q (smooth); zero where the writers' normals cancel. */
+inline float3 boundary_normal(const GridView* g, int i, int j, int k, uint rank, uint material, float3 q,
+                              uint smooth) {
+  if (!smooth) return gv_normal(g, rank);
+  float3 sum = (float3)(0.0f);
+  for (int dk = -1; dk <= 1; ++dk)
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di) {
+        const int a = i + di, b = j + dj, c = k + dk;
+        if (!gv_contains(g, a, b, c)) continue;
+        const ulong v = gv_linear(g, a, b, c);
+        if (!gv_occupied(g, v)) continue;
+        const uint r = gv_rank(g, v);
+        if (gv_material(g, r) != material) continue;
+        const float3 centre = (float3)((float)a + 0.5f, (float)b + 0.5f, (float)c + 0.5f);
+        const float w = fmax(0.0f, 1.5f - length(centre - q));
+        sum += w * gv_normal(g, r);
+      }
+  const float len = length(sum);
+  return len > 1e-6f ? sum / len : gv_normal(g, rank);
+}
+
+inline float3 to_world(const VoxelRefractParams* p, float3 q) {
+  return (float3)(p->origin[0], p->origin[1], p->origin[2]) + p->voxel_size * q;
+}
+
+inline void absorb(float3* throughput, const RenderMaterial* m, float world_length) {
+  const float3 sigma = vload3(0, m->absorption);
+  *throughput *= exp(-sigma * world_length);
+}
+
+/* A march along one straight segment: the DDA's state, or the papers' sample point and step. */
+typedef struct March {
+  GvRay ray;   /* dda */
+  float3 q;    /* papers: the current sample point (grid units) */
+  float3 step; /* papers: dir / max |dir component| */
+  float3 origin, dir;
+  int i, j, k; /* the current voxel */
+  float t;     /* parameter (grid units along dir) where the current voxel was entered / sampled */
+} March;
+
+inline int march_begin(March* m, const GridView* g, float3 origin, float3 dir, uint dda) {
+  m->origin = origin;
+  m->dir = dir;
+  m->t = 0.0f;
+  if (dda) {
+    if (!gv_ray_begin(&m->ray, g, origin, dir)) return 0;
+    m->i = m->ray.i;
+    m->j = m->ray.j;
+    m->k = m->ray.k;
+    m->t = m->ray.t;
+    return 1;
+  }
+  const float3 a = fabs(dir);
+  m->step = dir / fmax(fmax(a.x, a.y), a.z);
+  m->q = origin;
+  m->i = (int)floor(origin.x);
+  m->j = (int)floor(origin.y);
+  m->k = (int)floor(origin.z);
+  return gv_contains(g, m->i, m->j, m->k);
+}
+
+/* The next voxel; 0 when the march leaves the grid. */
+inline int march_step(March* m, const GridView* g, uint dda) {
+  if (dda) {
+    if (gv_ray_step(&m->ray, g) < 0) return 0;
+    m->i = m->ray.i;
+    m->j = m->ray.j;
+    m->k = m->ray.k;
+    m->t = m->ray.t;
+    return 1;
+  }
+  m->q += m->step;
+  m->t += length(m->step);
+  m->i = (int)floor(m->q.x);
+  m->j = (int)floor(m->q.y);
+  m->k = (int)floor(m->q.z);
+  return gv_contains(g, m->i, m->j, m->k);
+}
+
+inline float3 march_point(const March* m) {
+  return m->origin + m->t * m->dir;
+}
+
+__kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_voxel(
+    VOXR_GRID_VIEW_PARAMS, RenderCamera cam, __global const SurfaceSample* primary,
+    __global const RenderMaterial* materials, uint material_count, VoxelRefractParams p,
+    __global SurfaceSample* ends, __global RefractionPath* paths) {
+  const uint id = get_global_id(0);
+  if (id >= cam.width * cam.height) return;
+  const GridView g = VOXR_GRID_VIEW();
+  float3 dir = rp_camera_direction(&cam, id % cam.width, id / cam.width);
+  const SurfaceSample s = primary[id];
+  const uint m0 = min(s.material, material_count - 1u);
+  if (s.triangle == VOXR_NO_TRIANGLE || materials[m0].kind != VOXR_MATERIAL_DIELECTRIC) {
+    ends[id] = s;
+    paths[id] = rp_identity(dir);
+    return;
+  }
+
+  /* The front surface, exact: Schlick's F reflects the environment, 1 - F refracts in. */
+  RefractionPath path = rp_identity(dir);
+  const float3 n_front = vload3(0, s.normal); /* turned towards the eye: outward here */
+  const float n_in = materials[m0].ior;
+  float cos_i;
+  float3 t_dir;
+  rp_refract(dir, n_front, 1.0f, n_in, &t_dir, &cos_i);
+  path.fresnel = voxr_schlick(cos_i, 1.0f, n_in);
+  rp_store3(path.reflect_direction, rp_reflect(dir, n_front));
+  float3 throughput = (float3)(1.0f - path.fresnel);
+  uint events = 1u;
+  dir = t_dir;
+  float3 exit_world = vload3(0, s.position);
+
+  uint media[MAX_MEDIA];
+  uint depth = 1;
+  media[0] = m0;
+  float3 prev_normal = n_front;
+  uint run_material = m0;
+  int in_run = 1; /* inside the boundary run last refracted at */
+
+  const float inv_size = 1.0f / p.voxel_size;
+  float3 origin = (exit_world - (float3)(p.origin[0], p.origin[1], p.origin[2])) * inv_size;
+  March m;
+  int inside_grid = march_begin(&m, &g, origin, dir, p.step_dda);
+  float3 last = origin; /* where absorption was last accounted */
+  int ended = 0;
+  SurfaceSample end;
+  rp_store3(end.position, (float3)(0.0f));
+  rp_store3(end.normal, (float3)(0.0f));
+  rp_store3(end.geometric_normal, (float3)(0.0f));
+  end.triangle = VOXR_NO_TRIANGLE;
+  end.material = 0u;
+  end.distance = 0.0f;
+  end.barycentric[0] = end.barycentric[1] = 0.0f;
+  end.pad[0] = end.pad[1] = 0.0f;
+  for (uint steps = 0; inside_grid && steps < p.max_steps; ++steps) {
+    if (!march_step(&m, &g, p.step_dda)) {
+      inside_grid = 0;
+      break;
+    }
+    const float3 here = march_point(&m);
+    if (depth > 0) {
+      const RenderMaterial medium = materials[media[depth - 1]];
+      absorb(&throughput, &medium, length(here - last) * p.voxel_size);
+    }
+    last = here;
+    const ulong v = gv_linear(&g, m.i, m.j, m.k);
+    if (!gv_occupied(&g, v)) {
+      in_run = 0;
+      continue;
+    }
+    const uint rank = gv_rank(&g, v);
+    const uint mat = min(gv_material(&g, rank), material_count - 1u);
+    const RenderMaterial mm = materials[mat];
+    if (mm.kind == VOXR_MATERIAL_OPAQUE) {
+      float3 n = boundary_normal(&g, m.i, m.j, m.k, rank, mat, here, p.smooth_normals);
+      if (dot(n, n) < 1e-12f) n = -dir;
+      if (dot(n, dir) > 0.0f) n = -n;
+      rp_store3(end.position, to_world(&p, here));
+      end.triangle = VOXR_VOXEL_HIT;
+      rp_store3(end.normal, n);
+      end.material = mat;
+      rp_store3(end.geometric_normal, n);
+      ended = 1;
+      break;
+    }
+    if (mm.kind == VOXR_MATERIAL_SHEET) {
+      if (!in_run || run_material != mat) throughput *= vload3(0, mm.transmittance);
+      in_run = 1;
+      run_material = mat;
+      continue;
+    }
+    /* A dielectric boundary voxel. */
+    if (p.two_surface && (events >= 2u || mat != m0)) continue; /* voxel-two: only its object's back */
+    const float3 n = boundary_normal(&g, m.i, m.j, m.k, rank, mat, here, p.smooth_normals);
+    if (dot(n, n) < 1e-12f) continue; /* the writers' normals cancel: a sheet of glass thinner than a voxel */
+    if (in_run && run_material == mat && dot(n, prev_normal) > p.cos_threshold) continue; /* same surface */
+    int inside = -1;
+    for (uint d = 0; d < depth; ++d)
+      if (media[d] == mat) inside = (int)d;
+    const float n1 = depth > 0 ? materials[media[depth - 1]].ior : 1.0f;
+    const float n2 = inside >= 0 ? (inside > 0 ? materials[media[inside - 1]].ior : 1.0f) : mm.ior;
+    float3 new_dir;
+    if (rp_refract(dir, n, n1, n2, &new_dir, &cos_i)) {
+      throughput *= 1.0f - voxr_schlick(cos_i, n1, n2);
+      if (inside >= 0) {
+        for (uint d = (uint)inside; d + 1 < depth; ++d) media[d] = media[d + 1];
+        --depth;
+      } else if (depth < MAX_MEDIA) {
+        media[depth++] = mat;
+      }
+    } else {
+      events |= VOXR_PATH_TIR;
+    }
+    ++events;
+    if (p.two_surface && (events & VOXR_PATH_EVENTS_MASK) >= 2u) depth = 0; /* passes all later glass */
+    prev_normal = n;
+    run_material = mat;
+    in_run = 1;
+    exit_world = to_world(&p, here);
+    if ((events & VOXR_PATH_EVENTS_MASK) >= VOXR_PATH_MAX_EVENTS) {
+      events |= VOXR_PATH_LOST;
+      ended = 1;
+      break;
+    }
+    dir = new_dir;
+    inside_grid = march_begin(&m, &g, here, dir, p.step_dda);
+    last = here;
+  }
+  if (!ended) {
+    if (inside_grid && depth > 0)
+      events |= VOXR_PATH_LOST; /* out of steps inside glass */
+    else
+      events |= VOXR_PATH_ENV;
+  }
+  rp_store3(path.throughput, throughput);
+  path.events = events;
+  rp_store3(path.exit_position, exit_world);
+  rp_store3(path.exit_direction, dir);
+  ends[id] = end;
+  paths[id] = path;
+}

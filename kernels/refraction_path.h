@@ -1,0 +1,62 @@
+/* refraction_path.h — what every refraction kernel (refract_voxel.cl, image_space.cl) shares: the camera
+ * ray of a pixel, the identity path of a pixel that sees no dielectric, Snell refraction of a vector, and
+ * writing a path's end. OpenCL only; the interface optics themselves are in refraction.h. */
+#ifndef VOXR_REFRACTION_PATH_H
+#define VOXR_REFRACTION_PATH_H
+
+#include "refraction.h"
+#include "voxr_layout.h"
+
+/* The unit direction of pixel (x, y)'s ray through its centre (CameraFrame::ray_direction). */
+inline float3 rp_camera_direction(const RenderCamera* cam, uint x, uint y) {
+  const float3 forward = (float3)(cam->forward[0], cam->forward[1], cam->forward[2]);
+  const float3 right = (float3)(cam->right[0], cam->right[1], cam->right[2]);
+  const float3 up = (float3)(cam->up[0], cam->up[1], cam->up[2]);
+  const float sx = (2.0f * ((float)x + 0.5f) / (float)cam->width - 1.0f) * cam->tan_half_fov_y * cam->aspect;
+  const float sy = (1.0f - 2.0f * ((float)y + 0.5f) / (float)cam->height) * cam->tan_half_fov_y;
+  return normalize(forward + sx * right + sy * up);
+}
+
+inline void rp_store3(float* out, float3 v) {
+  out[0] = v.x;
+  out[1] = v.y;
+  out[2] = v.z;
+}
+
+/* The path of a pixel whose camera ray (direction dir) meets no dielectric. */
+inline RefractionPath rp_identity(float3 dir) {
+  RefractionPath p;
+  rp_store3(p.throughput, (float3)(1.0f));
+  p.events = 0u;
+  rp_store3(p.reflect_direction, (float3)(0.0f));
+  p.fresnel = 0.0f;
+  rp_store3(p.exit_position, (float3)(0.0f));
+  p.pad0 = 0.0f;
+  rp_store3(p.exit_direction, dir);
+  p.pad1 = 0.0f;
+  return p;
+}
+
+/* Mirror d (unit) about n (unit). */
+inline float3 rp_reflect(float3 d, float3 n) {
+  return d - 2.0f * dot(d, n) * n;
+}
+
+/* Refracts unit d at a surface of unit normal n (either orientation) from index n1 into n2. Returns 1 and
+ * the refracted unit direction in *t, or 0 on total internal reflection (*t is then the mirror direction).
+ * *cos_i receives the incidence cosine (>= 0). */
+inline int rp_refract(float3 d, float3 n, float n1, float n2, float3* t, float* cos_i) {
+  if (dot(d, n) > 0.0f) n = -n; /* n faces the incoming ray */
+  const float ci = fmin(-dot(d, n), 1.0f);
+  *cos_i = ci;
+  const float ct = voxr_refracted_cos(ci, n1, n2);
+  if (ct < 0.0f) {
+    *t = rp_reflect(d, n);
+    return 0;
+  }
+  const float eta = n1 / n2;
+  *t = normalize(eta * d + (eta * ci - ct) * n);
+  return 1;
+}
+
+#endif
