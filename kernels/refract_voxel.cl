@@ -41,9 +41,13 @@ inline float3 to_world(const VoxelRefractParams* p, float3 q) {
   return (float3)(p->origin[0], p->origin[1], p->origin[2]) + p->voxel_size * q;
 }
 
-inline void absorb(float3* throughput, const RenderMaterial* m, float world_length) {
-  const float3 sigma = vload3(0, m->absorption);
-  *throughput *= exp(-sigma * world_length);
+/* Beer-Lambert over the straight segment [from, to] (grid units) inside the innermost medium, if any: the
+ * march applies it once per segment (at each event and at the end), not per voxel. */
+inline void absorb_segment(float3* throughput, __global const RenderMaterial* materials, const uint* media,
+                           uint depth, float3 from, float3 to, float voxel_size) {
+  if (depth == 0) return;
+  const float3 sigma = vload3(0, materials[media[depth - 1]].absorption);
+  *throughput *= exp(-sigma * (length(to - from) * voxel_size));
 }
 
 /* A march along one straight segment: the DDA's state, or the papers' sample point and step. */
@@ -51,6 +55,7 @@ typedef struct March {
   GvRay ray;   /* dda */
   float3 q;    /* papers: the current sample point (grid units) */
   float3 step; /* papers: dir / max |dir component| */
+  float step_length;
   float3 origin, dir;
   int i, j, k; /* the current voxel */
   float t;     /* parameter (grid units along dir) where the current voxel was entered / sampled */
@@ -69,7 +74,8 @@ inline int march_begin(March* m, const GridView* g, float3 origin, float3 dir, u
     return 1;
   }
   const float3 a = fabs(dir);
-  m->step = dir / fmax(fmax(a.x, a.y), a.z);
+  m->step_length = 1.0f / fmax(fmax(a.x, a.y), a.z);
+  m->step = dir * m->step_length;
   m->q = origin;
   m->i = (int)floor(origin.x);
   m->j = (int)floor(origin.y);
@@ -88,7 +94,7 @@ inline int march_step(March* m, const GridView* g, uint dda) {
     return 1;
   }
   m->q += m->step;
-  m->t += length(m->step);
+  m->t += m->step_length;
   m->i = (int)floor(m->q.x);
   m->j = (int)floor(m->q.y);
   m->k = (int)floor(m->q.z);
@@ -99,10 +105,50 @@ inline float3 march_point(const March* m) {
   return m->origin + m->t * m->dir;
 }
 
+/* The empty-space grid: the bit of brick (bi, bj, bk) is set when any voxel of it is occupied. One work item
+ * per 32-bit occupancy word; each set bit is mapped on its own (rows may end mid-word). */
+__kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void brick_occupancy(
+    VOXR_GRID_VIEW_PARAMS, VoxelRefractParams p, ulong words, __global uint* bricks) {
+  const ulong w = get_global_id(0);
+  if (w >= words) return;
+  const GridView g = VOXR_GRID_VIEW();
+  uint bits = g.occ[w];
+  while (bits != 0u) {
+    const uint b = 31u - clz(bits);
+    bits &= ~(1u << b);
+    const ulong v = w * 32ul + b;
+    const ulong row = v / g.dims_x;
+    const uint i = (uint)(v - row * g.dims_x), j = (uint)(row % g.dims_y), k = (uint)(row / g.dims_y);
+    if (k >= g.dims_z) continue;
+    const ulong brick = ((ulong)(k / VOXR_BRICK) * p.brick_dims[1] + j / VOXR_BRICK) * p.brick_dims[0] +
+                        i / VOXR_BRICK;
+    atomic_or(&bricks[brick >> 5], 1u << (uint)(brick & 31));
+  }
+}
+
+inline int brick_empty(const VoxelRefractParams* p, __global const uint* bricks, int i, int j, int k) {
+  const ulong brick = ((ulong)(k / VOXR_BRICK) * p->brick_dims[1] + (uint)(j / VOXR_BRICK)) * p->brick_dims[0] +
+                      (uint)(i / VOXR_BRICK);
+  return ((bricks[brick >> 5] >> (uint)(brick & 31)) & 1u) == 0u;
+}
+
+/* The ray parameter where origin + t dir leaves brick box [lo, lo + VOXR_BRICK]^3 (dir has a non-zero
+ * component). */
+inline float brick_exit(float3 origin, float3 dir, int i, int j, int k) {
+  const float3 lo = (float3)((float)(i / VOXR_BRICK * VOXR_BRICK), (float)(j / VOXR_BRICK * VOXR_BRICK),
+                             (float)(k / VOXR_BRICK * VOXR_BRICK));
+  const float3 hi = lo + (float3)((float)VOXR_BRICK);
+  float t = INFINITY;
+  if (dir.x != 0.0f) t = fmin(t, ((dir.x > 0.0f ? hi.x : lo.x) - origin.x) / dir.x);
+  if (dir.y != 0.0f) t = fmin(t, ((dir.y > 0.0f ? hi.y : lo.y) - origin.y) / dir.y);
+  if (dir.z != 0.0f) t = fmin(t, ((dir.z > 0.0f ? hi.z : lo.z) - origin.z) / dir.z);
+  return t;
+}
+
 __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_voxel(
     VOXR_GRID_VIEW_PARAMS, RenderCamera cam, __global const SurfaceSample* primary,
     __global const RenderMaterial* materials, uint material_count, VoxelRefractParams p,
-    __global SurfaceSample* ends, __global RefractionPath* paths) {
+    __global const uint* bricks, __global SurfaceSample* ends, __global RefractionPath* paths) {
   const uint id = get_global_id(0);
   if (id >= cam.width * cam.height) return;
   const GridView g = VOXR_GRID_VIEW();
@@ -151,26 +197,30 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
   end.distance = 0.0f;
   end.barycentric[0] = end.barycentric[1] = 0.0f;
   end.pad[0] = end.pad[1] = 0.0f;
+  int examine_current = 0; /* after a skip the voxel begun in is examined before stepping on */
   for (uint steps = 0; inside_grid && steps < p.max_steps; ++steps) {
-    if (!march_step(&m, &g, p.step_dda)) {
+    if (!examine_current && !march_step(&m, &g, p.step_dda)) {
       inside_grid = 0;
       break;
     }
+    examine_current = 0;
     const float3 here = march_point(&m);
-    if (depth > 0) {
-      const RenderMaterial medium = materials[media[depth - 1]];
-      absorb(&throughput, &medium, length(here - last) * p.voxel_size);
-    }
-    last = here;
     const ulong v = gv_linear(&g, m.i, m.j, m.k);
     if (!gv_occupied(&g, v)) {
       in_run = 0;
+      if (brick_empty(&p, bricks, m.i, m.j, m.k)) {
+        /* Skip the rest of the empty brick: restart the march just past its exit. */
+        inside_grid = march_begin(&m, &g, here + (brick_exit(here, dir, m.i, m.j, m.k) + 1e-3f) * dir, dir,
+                                  p.step_dda);
+        examine_current = 1;
+      }
       continue;
     }
     const uint rank = gv_rank(&g, v);
     const uint mat = min(gv_material(&g, rank), material_count - 1u);
     const RenderMaterial mm = materials[mat];
     if (mm.kind == VOXR_MATERIAL_OPAQUE) {
+      absorb_segment(&throughput, materials, media, depth, last, here, p.voxel_size);
       float3 n = boundary_normal(&g, m.i, m.j, m.k, rank, mat, here, p.smooth_normals);
       if (dot(n, n) < 1e-12f) n = -dir;
       if (dot(n, dir) > 0.0f) n = -n;
@@ -190,9 +240,12 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
     }
     /* A dielectric boundary voxel. */
     if (p.two_surface && (events >= 2u || mat != m0)) continue; /* voxel-two: only its object's back */
-    const float3 n = boundary_normal(&g, m.i, m.j, m.k, rank, mat, here, p.smooth_normals);
-    if (dot(n, n) < 1e-12f) continue; /* the writers' normals cancel: a sheet of glass thinner than a voxel */
-    if (in_run && run_material == mat && dot(n, prev_normal) > p.cos_threshold) continue; /* same surface */
+    const float3 n_voxel = gv_normal(&g, rank);
+    if (dot(n_voxel, n_voxel) < 1e-12f) continue; /* the writers' normals cancel: glass thinner than a voxel */
+    if (in_run && run_material == mat && dot(n_voxel, prev_normal) > p.cos_threshold) continue; /* same run */
+    const float3 n = p.smooth_normals ? boundary_normal(&g, m.i, m.j, m.k, rank, mat, here, 1u) : n_voxel;
+    absorb_segment(&throughput, materials, media, depth, last, here, p.voxel_size);
+    last = here;
     int inside = -1;
     for (uint d = 0; d < depth; ++d)
       if (media[d] == mat) inside = (int)d;
@@ -212,7 +265,7 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
     }
     ++events;
     if (p.two_surface && (events & VOXR_PATH_EVENTS_MASK) >= 2u) depth = 0; /* passes all later glass */
-    prev_normal = n;
+    prev_normal = n_voxel;
     run_material = mat;
     in_run = 1;
     exit_world = to_world(&p, here);
@@ -223,9 +276,9 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
     }
     dir = new_dir;
     inside_grid = march_begin(&m, &g, here, dir, p.step_dda);
-    last = here;
   }
   if (!ended) {
+    absorb_segment(&throughput, materials, media, depth, last, march_point(&m), p.voxel_size);
     if (inside_grid && depth > 0)
       events |= VOXR_PATH_LOST; /* out of steps inside glass */
     else

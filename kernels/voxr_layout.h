@@ -198,8 +198,11 @@ typedef struct VoxelRefractParams {
   uint smooth_normals; /* 1: 3x3x3 weighted normals, 0: the voxel's own */
   float cos_threshold; /* cos of the angle threshold between a run's normals */
   uint max_steps;      /* voxels visited at most per path */
-  uint pad[3];
+  uint brick_dims[3];  /* the empty-space bit grid: one bit per VOXR_BRICK^3 voxels, x fastest */
 } VoxelRefractParams;
+
+/* Voxels per side of a brick of the empty-space grid voxel refraction skips through. */
+#define VOXR_BRICK 8
 
 /* Where a receiver finds its column and slab in a light's grid (host/render/light_frame.h). Orthographic
  * (directional light): grid = to_light * p. Frustum (point light): q = to_light * p is the point in the
@@ -318,7 +321,7 @@ typedef struct RenderCamera {
   OFFSET(RefractionPath, exit_position) OFFSET(RefractionPath, exit_direction)                            \
   SIZE(VoxelRefractParams) OFFSET(VoxelRefractParams, origin) OFFSET(VoxelRefractParams, voxel_size)      \
   OFFSET(VoxelRefractParams, two_surface) OFFSET(VoxelRefractParams, cos_threshold)                       \
-  OFFSET(VoxelRefractParams, max_steps)                                                                   \
+  OFFSET(VoxelRefractParams, max_steps) OFFSET(VoxelRefractParams, brick_dims)                           \
   SIZE(ShadowFrame) OFFSET(ShadowFrame, to_light) OFFSET(ShadowFrame, dims)                               \
   OFFSET(ShadowFrame, projective) OFFSET(ShadowFrame, u0) OFFSET(ShadowFrame, inv_dv)                     \
   OFFSET(ShadowFrame, depth_scale) OFFSET(ShadowFrame, voxel_size)                                        \

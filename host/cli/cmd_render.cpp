@@ -1,8 +1,10 @@
-// voxr render [SCENE] -o out.png: one image of the scene with transparent shadows by the chosen method
-// (render/frame_renderer.h; the Embree reference for --shadows reference), a summary of the light's grid and
-// per-stage times, and with --compare-reference the error against the exact reference at the same receiver
-// points (transmittance RMSE and maximum, share of pixels off by more than 0.05, image PSNR) and an error
-// image beside the output.
+// voxr render [SCENE] -o out.png: one image of the scene with transparent shadows and refraction by the
+// chosen methods (render/frame_renderer.h; the Embree references for --shadows reference and --refraction
+// reference|reference-full), a summary of the grids and per-stage times, and with --compare-reference the
+// error against the exact reference: for refraction, image RMSE/PSNR against the matched reference, exit
+// direction error, event-sequence mismatches and non-finite pixels; without refraction, the shadows'
+// transmittance at the same receiver points (RMSE, maximum, share off by more than 0.05, image PSNR). An
+// error image is written beside the output.
 //
 // Like voxr voxelize, the device is opened and the programs built on a second thread while the scene is read.
 #include <fmt/format.h>
@@ -28,13 +30,17 @@
 #include "io/atomic_file.h"
 #include "io/image_file.h"
 #include "metrics/image_metrics.h"
+#include "metrics/refraction_metrics.h"
 #include "metrics/shadow_receivers.h"
+#include "reference/inward_distance.h"
+#include "reference/reference_refraction.h"
 #include "reference/reference_renderer.h"
 #include "reference/reference_scene.h"
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
 #include "render/shade_host.h"
+#include "render/vertex_normals.h"
 
 namespace voxr::cli {
 
@@ -51,6 +57,11 @@ struct RenderArgs {
   std::string report;
   float bias = kDefaultShadowBias;
   float normal_offset = kDefaultNormalOffset;
+  std::string refraction = "voxel-multi";
+  uint32_t res = 256;
+  std::string step = "dda";
+  std::string normals = "smooth";
+  float angle_threshold = 60.0f;
   uint32_t frames = 1;
   bool compare_reference = false;
   bool profile = false;
@@ -63,8 +74,17 @@ std::filesystem::path beside(const std::string& output, const std::string& tag) 
   return p.parent_path() / (p.stem().string() + "." + tag + p.extension().string());
 }
 
-int run_render(const RenderArgs& args) {
-  const auto process_start = Clock::now();
+bool has_dielectric(const TriangleSoup& soup, const std::vector<Material>& materials) {
+  for (const glm::uvec4& t : soup.triangles)
+    if (t.w < materials.size() && materials[t.w].kind == MaterialKind::kDielectric) return true;
+  return false;
+}
+
+nlohmann::json finite_or_inf(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json("inf");
+}
+
+RenderOptions render_options(const RenderArgs& args) {
   RenderOptions options;
   options.shadows = parse_shadow_method(args.shadows);
   if (!args.mode.empty() && options.shadows != ShadowMethod::kVoxel)
@@ -73,7 +93,18 @@ int run_render(const RenderArgs& args) {
   options.shadow_resolution = args.shadow_res;
   options.bias = args.bias;
   options.normal_offset = args.normal_offset;
+  options.refraction.method = parse_refraction_method(args.refraction);
+  options.refraction.resolution = args.res;
+  options.refraction.step = parse_step_rule(args.step);
+  options.refraction.normals = parse_normal_kind(args.normals);
+  options.refraction.angle_threshold_deg = args.angle_threshold;
   options.keep_samples = args.compare_reference;
+  return options;
+}
+
+int run_render(const RenderArgs& args) {
+  const auto process_start = Clock::now();
+  RenderOptions options = render_options(args);
   if (!is_image_file(args.output))
     fail("{}: the image format is chosen by extension: .png or .exr", args.output);
   check_output_path(args.output);
@@ -84,11 +115,13 @@ int run_render(const RenderArgs& args) {
     std::error_code ec;
     if (!std::filesystem::exists(args.input, ec)) fail("{}: no such file", args.input);
   }
-  const bool reference_only = options.shadows == ShadowMethod::kReference;
+  const RefractionMethod asked_refraction = options.refraction.method;
+  const bool host_refraction = is_reference_refraction(asked_refraction);
+  const bool reference_only = options.shadows == ShadowMethod::kReference || host_refraction;
   if (reference_only && args.compare_reference)
     fail(
-        "--compare-reference measures a shadow method against the reference; --shadows reference is the "
-        "reference itself");
+        "--compare-reference measures a method against the reference; --shadows reference and --refraction "
+        "reference|reference-full are the reference itself");
   const bool tty = isatty(fileno(stderr)) && !args.quiet;
 
   std::future<PreparedRuntime<FrameRenderer>> background;
@@ -100,38 +133,67 @@ int run_render(const RenderArgs& args) {
   for (const MeshInstance& m : scene.meshes)
     for (const std::string& w : m.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
   const std::vector<Material> materials = scene.materials;
+  const EnvironmentMap environment = make_environment_map(scene.environment);
   const TriangleSoup soup = take_scene_triangles(scene);
   validate_soup(soup, scene.source);
+  // Without glass in the scene there is nothing to refract: no grid is built.
+  if (!has_dielectric(soup, materials) && !host_refraction) options.refraction.method = RefractionMethod::kNone;
+  const bool refracting = options.refraction.method != RefractionMethod::kNone;
   const Bounds bounds = soup.bounds();
   const uint32_t width = size.x ? size.x : scene.camera.width, height = size.y ? size.y : scene.camera.height;
   const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, bounds, width, height);
-  const RenderLight light =
-      render_light(scene.light, make_environment_map(scene.environment).mean(), soup.anchor);
+  const RenderLight light = render_light(scene.light, environment.mean(), soup.anchor);
   const std::vector<RenderMaterial> render_mats = render_materials(materials);
   const double load_ms = ms_since(load_start);
 
   nlohmann::json report = {{"input", args.input.empty() ? "default scene" : args.input},
                            {"shadows", shadow_method_info(options.shadows).name},
+                           {"refraction", refraction_method_info(options.refraction.method).name},
+                           {"environment", environment.source()},
                            {"triangles", soup.triangle_count()},
                            {"size", {width, height}}};
+  if (is_voxel_refraction(options.refraction.method))
+    report["refraction_options"] = {{"res", options.refraction.resolution},
+                                    {"step", step_rule_info(options.refraction.step).name},
+                                    {"normals", normal_kind_info(options.refraction.normals).name},
+                                    {"angle_threshold_deg", options.refraction.angle_threshold_deg}};
   ImageRgba image;
   std::vector<SurfaceSample> samples;
   std::vector<glm::vec3> transmittance;
+  std::vector<RefractionPath> paths;
   std::vector<double> frame_ms;
   FrameStats stats;
   std::unique_ptr<ReferenceScene> reference;
+  const auto reference_scene = [&] {
+    if (!reference) reference = std::make_unique<ReferenceScene>(soup, materials);
+    return reference.get();
+  };
   if (reference_only) {
     if (tty) fmt::print(stderr, "\r{:<60}\rtracing the reference...", "");
-    reference = std::make_unique<ReferenceScene>(soup, materials);
+    reference_scene();
     for (uint32_t f = 0; f < args.frames; ++f) {
       const auto frame_start = Clock::now();
-      ReferenceRender r = render_reference(*reference, render_mats, light, camera);
+      if (host_refraction) {
+        const ReferenceModel model =
+            asked_refraction == RefractionMethod::kReference ? ReferenceModel::kMatched : ReferenceModel::kFull;
+        RefractionReference r =
+            render_refraction_reference(*reference, render_mats, light, environment, camera, model);
+        image = std::move(r.image);
+        report["ms"] = {{"bvh_build", r.build_ms},
+                        {"trace", r.trace_ms},
+                        {"shadow", r.shadow_ms},
+                        {"shade", r.shade_ms}};
+        report["shadows"] = "reference";
+      } else {
+        ReferenceRender r = render_reference(*reference, render_mats, light, camera);
+        image = std::move(r.image);
+        report["ms"] = {{"bvh_build", r.build_ms},
+                        {"primary", r.primary_ms},
+                        {"shadow", r.shadow_ms},
+                        {"shade", r.shade_ms}};
+        report["refraction"] = "none";
+      }
       frame_ms.push_back(ms_since(frame_start) + (f == 0 ? reference->build_ms() : 0.0));
-      image = std::move(r.image);
-      report["ms"] = {{"bvh_build", r.build_ms},
-                      {"primary", r.primary_ms},
-                      {"shadow", r.shadow_ms},
-                      {"shade", r.shade_ms}};
     }
     report["device"] = "host (Embree)";
   } else {
@@ -140,12 +202,21 @@ int run_render(const RenderArgs& args) {
     const double wait_ms = ms_since(wait_start);
     if (tty) fmt::print(stderr, "\r{:<60}\rrendering...", "");
     prepared.engine->set_scene(soup, materials);
+    prepared.engine->set_environment(environment);
+    double precompute_ms = 0.0;
+    if (options.refraction.method == RefractionMethod::kImageSpace) {
+      // Wyman's d_N, ray cast once per scene as the paper precomputes it offline.
+      const auto start = Clock::now();
+      prepared.engine->set_inward_distances(inward_distances(*reference_scene(), soup, vertex_normals(soup)));
+      precompute_ms = ms_since(start);
+    }
     for (uint32_t f = 0; f < args.frames; ++f) {
       RenderedFrame frame = prepared.engine->render(light, camera, options, {}, &stats);
       frame_ms.push_back(stats.frame_ms);
       image = std::move(frame.image);
       samples = std::move(frame.samples);
       transmittance = std::move(frame.transmittance);
+      paths = std::move(frame.paths);
     }
     nlohmann::json stages = nlohmann::json::object();
     for (const auto& [name, ms] : stats.stage_ms) stages[name] = ms;
@@ -156,6 +227,7 @@ int run_render(const RenderArgs& args) {
                     {"runtime", prepared.runtime_ms},
                     {"programs", prepared.programs_ms},
                     {"wait", wait_ms}};
+    if (precompute_ms > 0.0) report["ms"]["inward_distances"] = precompute_ms;
     if (options.shadows != ShadowMethod::kNone) {
       report["light_grid"] = {
           {"kind", stats.light.projective() ? "frustum" : "orthographic"},
@@ -165,6 +237,12 @@ int run_render(const RenderArgs& args) {
           {"device_bytes", stats.device_bytes}};
       if (options.shadows == ShadowMethod::kVoxel) report["mode"] = raster_mode_name(options.mode);
     }
+    if (is_voxel_refraction(options.refraction.method)) {
+      const glm::uvec3 d = stats.refraction_grid.dims;
+      report["refraction_grid"] = {{"dims", {d.x, d.y, d.z}},
+                                   {"voxel_size", stats.refraction_grid.voxel_size},
+                                   {"device_bytes", stats.refraction_bytes}};
+    }
     if (args.profile) fmt::print("{}\n", prepared.cl->profiler().table());
   }
   report["ms"]["load"] = load_ms;
@@ -172,22 +250,39 @@ int run_render(const RenderArgs& args) {
   report["ms"]["frame_median"] = median(frame_ms);
   report["frames"] = args.frames;
 
-  if (args.compare_reference && !reference_only) {
+  if (args.compare_reference && refracting) {
+    if (tty) fmt::print(stderr, "\r{:<60}\rtracing the matched reference...", "");
+    const auto ref_start = Clock::now();
+    const RefractionReference r = render_refraction_reference(*reference_scene(), render_mats, light, environment,
+                                                              camera, ReferenceModel::kMatched);
+    const RefractionError e = refraction_error(image, paths, r.image, r.paths);
+    const std::filesystem::path error_path = beside(args.output, "error");
+    write_image(error_image(image, r.image), error_path.string());
+    report["compare_reference"] = {{"reference", "matched"},
+                                   {"rmse", e.rmse},
+                                   {"psnr", finite_or_inf(e.psnr)},
+                                   {"angle_mean_deg", e.angle_mean_deg},
+                                   {"angle_p95_deg", e.angle_p95_deg},
+                                   {"angle_pixels", e.angle_pixels},
+                                   {"refracted_pixels", e.refracted_pixels},
+                                   {"event_mismatch_share", e.event_mismatch_share},
+                                   {"nonfinite_pixels", e.nonfinite_pixels},
+                                   {"error_image", error_path.string()},
+                                   {"reference_ms", ms_since(ref_start)}};
+  } else if (args.compare_reference) {
     if (tty) fmt::print(stderr, "\r{:<60}\rcomparing with the reference...", "");
     const auto ref_start = Clock::now();
-    reference = std::make_unique<ReferenceScene>(soup, materials);
-    const std::vector<glm::vec3> exact = reference_transmittance(*reference, light, samples);
+    const std::vector<glm::vec3> exact = reference_transmittance(*reference_scene(), light, samples);
     const std::vector<uint8_t> mask = shadow_receivers(samples, render_mats, light);
     const TransmittanceError e = transmittance_error(transmittance, exact, mask, 0.05);
-    const ImageRgba exact_image = shade_samples(samples, exact, render_mats, light, width, height);
-    const double p = psnr(image, exact_image);
+    const ImageRgba exact_image = shade_paths(samples, exact, paths, render_mats, light, environment, width, height);
     const std::filesystem::path error_path = beside(args.output, "error");
     write_image(error_image(transmittance, exact, width, height, mask, 1.0), error_path.string());
     report["compare_reference"] = {{"transmittance_rmse", e.rmse},
                                    {"transmittance_max", e.max_abs},
                                    {"share_over_0.05", e.share_over_threshold},
                                    {"receivers", e.receivers},
-                                   {"psnr", std::isfinite(p) ? nlohmann::json(p) : nlohmann::json("inf")},
+                                   {"psnr", finite_or_inf(psnr(image, exact_image))},
                                    {"error_image", error_path.string()},
                                    {"reference_ms", ms_since(ref_start)}};
   }
@@ -198,8 +293,18 @@ int run_render(const RenderArgs& args) {
   if (!args.quiet) {
     fmt::print("input      {} ({} triangles)\n", scene.source, soup.triangle_count());
     fmt::print("device     {}\n", report["device"].get<std::string>());
-    fmt::print("shadows    {}", shadow_method_info(options.shadows).name);
-    if (options.shadows == ShadowMethod::kVoxel) fmt::print(" ({} mode)", raster_mode_name(options.mode));
+    fmt::print("shadows    {}", report["shadows"].get<std::string>());
+    if (options.shadows == ShadowMethod::kVoxel && !reference_only)
+      fmt::print(" ({} mode)", raster_mode_name(options.mode));
+    fmt::print("\n");
+    fmt::print("refraction {}", report["refraction"].get<std::string>());
+    if (report.contains("refraction_grid"))
+      fmt::print(" (grid {}x{}x{}, {} step, {} normals, {:.1f} MiB)", stats.refraction_grid.dims.x,
+                 stats.refraction_grid.dims.y, stats.refraction_grid.dims.z,
+                 step_rule_info(options.refraction.step).name, normal_kind_info(options.refraction.normals).name,
+                 double(stats.refraction_bytes) / (1 << 20));
+    else if (asked_refraction != options.refraction.method)
+      fmt::print(" (the scene has no dielectric)");
     fmt::print("\n");
     if (report.contains("light_grid"))
       fmt::print("light grid {}, {} triangles from the light, {:.1f} MiB\n", stats.light.describe(),
@@ -214,12 +319,20 @@ int run_render(const RenderArgs& args) {
     if (!stages.empty()) fmt::print("stages ms  {} (host {:.2f})\n", stages, stats.host_ms);
     if (report.contains("compare_reference")) {
       const auto& c = report["compare_reference"];
-      fmt::print(
-          "vs exact   transmittance RMSE {:.4f}, max {:.3f}, {:.2f}% of {} receivers off by > 0.05, "
-          "PSNR {} dB\n",
-          c["transmittance_rmse"].get<double>(), c["transmittance_max"].get<double>(),
-          100.0 * c["share_over_0.05"].get<double>(), c["receivers"].get<uint64_t>(),
-          c["psnr"].is_number() ? fmt::format("{:.2f}", c["psnr"].get<double>()) : "inf");
+      const std::string p = c["psnr"].is_number() ? fmt::format("{:.2f}", c["psnr"].get<double>()) : "inf";
+      if (c.contains("rmse")) {
+        fmt::print("vs matched image RMSE {:.4f}, PSNR {} dB; exit direction error mean {:.2f} deg, 95th {:.2f} deg "
+                   "({} pixels); event sequence differs on {:.2f}% of {} refracted pixels; {} non-finite pixels\n",
+                   c["rmse"].get<double>(), p, c["angle_mean_deg"].get<double>(), c["angle_p95_deg"].get<double>(),
+                   c["angle_pixels"].get<uint64_t>(), 100.0 * c["event_mismatch_share"].get<double>(),
+                   c["refracted_pixels"].get<uint64_t>(), c["nonfinite_pixels"].get<uint64_t>());
+      } else {
+        fmt::print(
+            "vs exact   transmittance RMSE {:.4f}, max {:.3f}, {:.2f}% of {} receivers off by > 0.05, "
+            "PSNR {} dB\n",
+            c["transmittance_rmse"].get<double>(), c["transmittance_max"].get<double>(),
+            100.0 * c["share_over_0.05"].get<double>(), c["receivers"].get<uint64_t>(), p);
+      }
       fmt::print("wrote      {}\n", c["error_image"].get<std::string>());
     }
     fmt::print("process ms {:.1f}\n", report["ms"]["process"].get<double>());
@@ -232,7 +345,7 @@ int run_render(const RenderArgs& args) {
 
 Command add_render(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
-  CLI::App* sub = app.add_subcommand("render", "Render a scene with transparent shadows (.png or .exr)");
+  CLI::App* sub = app.add_subcommand("render", "Render a scene with transparent shadows and refraction (.png or .exr)");
   sub->add_option("input", args->input, "scene file (.json) or mesh; omitted: the built-in default scene");
   sub->add_option("-o,--output", args->output, "image: .png (8-bit sRGB) or .exr (linear float)")
       ->capture_default_str();
@@ -255,12 +368,33 @@ Command add_render(CLI::App& app) {
   sub->add_option("--normal-offset", args->normal_offset, "columns receivers move off their surface")
       ->check(CLI::Range(0.0f, 64.0f))
       ->capture_default_str();
+  std::string refractions;
+  for (const RefractionMethodInfo& info : kRefractionMethods)
+    refractions += fmt::format("{}{} ({})", refractions.empty() ? "" : "; ", info.name, info.summary);
+  sub->add_option("--refraction", args->refraction, refractions)->capture_default_str();
+  sub->add_option("--res", args->res, "voxel refraction: voxels along the scene's longest side")
+      ->check(CLI::Range(2u, 4096u))
+      ->capture_default_str();
+  sub->add_option("--step", args->step,
+                  "voxel refraction's march: papers (fixed step h / cos theta along the dominant axis) or dda "
+                  "(exact voxel traversal)")
+      ->capture_default_str();
+  sub->add_option("--normals", args->normals,
+                  "voxel refraction's boundary normals: voxel (the voxel's normal sum, the papers) or smooth "
+                  "(3x3x3 neighbours weighted by distance)")
+      ->capture_default_str();
+  sub->add_option("--angle-threshold", args->angle_threshold,
+                  "voxel-multi: degrees a boundary voxel's normal must turn from the last refraction normal to "
+                  "count as a new interface within one boundary run")
+      ->check(CLI::Range(0.0f, 180.0f))
+      ->capture_default_str();
   sub->add_option("--frames", args->frames,
                   "render the frame this many times in this process and report the median (warm) frame time")
       ->check(CLI::Range(1u, 100000u))
       ->capture_default_str();
   sub->add_flag("--compare-reference", args->compare_reference,
-                "measure the shadows against the Embree reference at the same receivers; writes "
+                "measure against the Embree reference: refraction against the matched reference (image, exit "
+                "directions, event sequences), or without refraction the shadows at the same receivers; writes "
                 "OUT.error.png");
   sub->add_option("--device", args->device, "OpenCL device P:D or name substring (also $VOXR_DEVICE)");
   sub->add_option("--report", args->report, "write a JSON report (times, light grid, errors)");

@@ -44,11 +44,10 @@ EnvironmentMap EnvironmentMap::checker(uint32_t width) {
   std::vector<glm::vec4> px(size_t(w) * h);
   for (uint32_t y = 0; y < h; ++y)
     for (uint32_t x = 0; x < w; ++x) {
-      const uint32_t cx = x * 16 / w, cy = y * 8 / h;
+      const uint32_t cx = x * 32 / w, cy = y * 16 / h;
       const float v = ((cx + cy) & 1) ? 1.0f : 0.35f;
-      glm::vec3 c = hue((float(cx) + 0.5f) / 16.0f, v);
+      glm::vec3 c = hue((float(cx / 2) + 0.5f) / 16.0f, v);
       const float polar = (float(y) + 0.5f) / float(h);  // 0 up, 1 down
-      if (std::abs(polar - 0.5f) < 0.02f) c = glm::vec3(1.0f);
       if (polar > 0.5f) c *= 0.6f;  // the ground half darker, as under a sky
       px[size_t(y) * w + x] = glm::vec4(c, 1.0f);
     }

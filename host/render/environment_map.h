@@ -1,8 +1,8 @@
 // What rays that leave the scene see (kernels/environment.h): an equirectangular RGBA image, one of
 //   constant    a 1 x 1 image of the scene's "environment": {"color": ...}
-//   checker     the built-in procedural lat-long checker ("environment": {"procedural": "checker"}): 16 x 8
-//               cells, hue by longitude, bright and dark alternating, a white horizon band, so every
-//               direction is told apart and tests need no files
+//   checker     the built-in procedural lat-long checker ("environment": {"procedural": "checker"}): 32 x 16
+//               cells of 11.25 degrees, hue by longitude, bright and dark alternating, the lower half darker,
+//               so directions are told apart and tests need no files
 //   image       an equirectangular file read through OpenImageIO (.exr, .hdr, .png; PNG decoded from sRGB)
 // The same lookup runs on the device (shade.cl) and on the host (the reference).
 #pragma once

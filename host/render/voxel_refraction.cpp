@@ -54,25 +54,41 @@ void VoxelRefraction::build(const RefractionOptions& options) {
   }
   voxelizer_.run(*mesh_, spec, voxelize_options(), grid_);
   if (!grid_.has_rank_index) build_rank_index(cl_, grid_);
+
+  for (int a = 0; a < 3; ++a) brick_dims_[a] = (spec.dims[a] + VOXR_BRICK - 1) / VOXR_BRICK;
+  const uint64_t brick_words = (uint64_t(brick_dims_.x) * brick_dims_.y * brick_dims_.z + 31) / 32;
+  cl::Buffer& bricks = bricks_.ensure(cl_, brick_words * 4, "refraction bricks");
+  cl_.queue().enqueueFillBuffer(bricks, cl_uint(0), 0, brick_words * 4);
+  cl::Kernel kernel = cl_.kernel("refract_voxel.cl", "brick_occupancy", channel_defines());
+  cl_.launch("refraction_bricks", kernel, grid_.words(), kGroup, grid_.view_args(cl_), params(options),
+             cl_ulong(grid_.words()), bricks);
 }
 
-void VoxelRefraction::trace(const CameraFrame& camera, const cl::Buffer& primary_samples,
-                            const cl::Buffer& materials, uint32_t material_count,
-                            const RefractionOptions& options, cl::Buffer& end_samples, cl::Buffer& paths) {
-  VOXR_CHECK(material_count > 0);
+VoxelRefractParams VoxelRefraction::params(const RefractionOptions& options) const {
   const GridSpec& spec = grid_.spec;
   VoxelRefractParams p{};
-  for (int a = 0; a < 3; ++a) p.origin[a] = spec.origin[a];
+  for (int a = 0; a < 3; ++a) {
+    p.origin[a] = spec.origin[a];
+    p.brick_dims[a] = brick_dims_[a];
+  }
   p.voxel_size = spec.voxel_size;
   p.two_surface = options.method == RefractionMethod::kVoxelTwo ? 1u : 0u;
   p.step_dda = options.step == StepRule::kDda ? 1u : 0u;
   p.smooth_normals = options.normals == NormalKind::kSmooth ? 1u : 0u;
   p.cos_threshold = std::cos(options.angle_threshold_deg * float(M_PI) / 180.0f);
   p.max_steps = 4 * (spec.dims.x + spec.dims.y + spec.dims.z);
+  return p;
+}
+
+void VoxelRefraction::trace(const CameraFrame& camera, const cl::Buffer& primary_samples,
+                            const cl::Buffer& materials, uint32_t material_count,
+                            const RefractionOptions& options, cl::Buffer& end_samples, cl::Buffer& paths) {
+  VOXR_CHECK(material_count > 0);
   cl::Kernel kernel = cl_.kernel("refract_voxel.cl", "refract_voxel", channel_defines());
   const uint64_t pixels = uint64_t(camera.width) * camera.height;
   cl_.launch("refraction", kernel, pixels, kGroup, grid_.view_args(cl_), make_render_camera(camera),
-             primary_samples, materials, cl_uint(material_count), p, end_samples, paths);
+             primary_samples, materials, cl_uint(material_count), params(options), bricks_.buffer, end_samples,
+             paths);
 }
 
 }  // namespace voxr

@@ -10,7 +10,8 @@
 //                refracts (voxel or smooth normal), the rest of its boundary run is skipped unless a voxel's
 //                normal turns more than the angle threshold from the last refraction normal, Beer-Lambert
 //                with each medium's absorption, up to VOXR_PATH_MAX_EVENTS interfaces.
-// Step rules: the papers' (one voxel along the dominant axis, length h / cos theta) or the 3-D DDA. An opaque
+// Step rules: the papers' (one voxel along the dominant axis, length h / cos theta) or the 3-D DDA; both skip
+// empty VOXR_BRICK^3 bricks (a bit grid built after voxelizing), which the papers do not. An opaque
 // voxel ends the path with a VOXR_VOXEL_HIT sample (voxel entry point, voxel normal turned to the ray, the
 // voxel's material) that the shadow lookup and shading treat like any surface. The path model is
 // kernels/refraction.h's.
@@ -26,6 +27,7 @@
 #include "render/refraction_method.h"
 #include "voxelize/device_mesh.h"
 #include "voxelize/voxelizer.h"
+#include "voxr_layout.h"
 
 namespace voxr {
 
@@ -60,6 +62,10 @@ class VoxelRefraction {
   const TriangleSoup* soup_ = nullptr;
   std::unique_ptr<DeviceMesh> mesh_;  // split for grid_.spec
   GridSpec mesh_grid_;                // the grid mesh_ was split for
+  GrowingBuffer bricks_;              // one bit per VOXR_BRICK^3 voxels: empty space the march skips
+  glm::uvec3 brick_dims_{0};
+
+  VoxelRefractParams params(const RefractionOptions& options) const;
 };
 
 }  // namespace voxr
