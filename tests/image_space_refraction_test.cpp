@@ -6,7 +6,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "core/generators.h"
@@ -166,6 +168,47 @@ TEST(ImageSpaceRefraction, BallCentrePassesStraightThroughWithTwoRefractions) {
     }
   }
   EXPECT_GT(glass, size_t(kWidth) * kHeight / 10);
+}
+
+// The exact exit direction of the camera ray `v` (unit) from the eye through the ideal ball; false on a
+// miss or total internal reflection.
+bool exact_exit(glm::vec3 eye, glm::vec3 v, glm::vec3& t2) {
+  const float b = glm::dot(eye, v), c = glm::dot(eye, eye) - kRadius * kRadius;
+  if (b * b - c <= 0.0f) return false;
+  const glm::vec3 p1 = eye + (-b - std::sqrt(b * b - c)) * v;
+  const glm::vec3 t1 = glm::refract(v, p1 / kRadius, 1.0f / kIor);
+  const glm::vec3 p2 = p1 - 2.0f * glm::dot(p1, t1) * t1;  // the chord's other end
+  t2 = glm::refract(t1, -p2 / kRadius, kIor);
+  return glm::dot(t2, t2) > 0.5f;
+}
+
+TEST(ImageSpaceRefraction, ExitDirectionsFollowTheBallAtModerateIncidence) {
+  // A ball is where d_V and d_N blend exactly right near normal incidence: the approximate exit directions
+  // stay close to the exact ones while the incidence is moderate.
+  const TriangleSoup soup = scene(false);
+  const Rendered r = render(soup, EnvironmentMap::checker());
+  const CameraFrame cam = camera();
+  size_t checked = 0;
+  double worst = 0.0, sum = 0.0;
+  for (uint32_t y = 0; y < kHeight; ++y)
+    for (uint32_t x = 0; x < kWidth; ++x) {
+      const size_t i = size_t(y) * kWidth + x;
+      const glm::vec3 v = cam.ray_direction(float(x) + 0.5f, float(y) + 0.5f);
+      glm::vec3 exact;
+      if (!exact_exit(cam.eye, v, exact) || r.none.samples[i].material != kGlass) continue;
+      const float cos_i = -glm::dot(v, vec(r.none.samples[i].normal));
+      if (cos_i < std::cos(glm::radians(40.0f))) continue;
+      const float c = glm::dot(glm::normalize(vec(r.image_space.paths[i].exit_direction)), exact);
+      const double angle = glm::degrees(std::acos(std::clamp(c, -1.0f, 1.0f)));
+      worst = std::max(worst, angle);
+      sum += angle;
+      ++checked;
+    }
+  ASSERT_GT(checked, 200u);
+  EXPECT_LT(sum / double(checked), 1.2) << "mean exit direction error (degrees)";
+  EXPECT_LT(worst, 3.5) << "largest exit direction error (degrees)";
+  std::printf("exit direction error: mean %.3f, max %.3f degrees over %zu pixels\n", sum / double(checked),
+              worst, checked);
 }
 
 TEST(ImageSpaceRefraction, FindsAnOpaqueBoxBehindTheBall) {
