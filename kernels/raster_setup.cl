@@ -1,7 +1,8 @@
 /* raster_setup.cl — stage 1 of the kernel rasterizer: per triangle, transform to clip space, drop it when its
- * material kind is not drawn or it lies wholly outside one side of the view, clip it against the near plane
- * (z >= 0) and the guard band in homogeneous space, project and snap the polygon to 1/VOXR_SUBPIXEL pixel,
- * find its depth plane and the tiles of its pixel bounding box, and count them (one raster record each).
+ * material kind is not drawn, it faces the culled way (RasterParams.cull) or it lies wholly outside one side
+ * of the view, clip it against the near plane (z >= 0) and the guard band in homogeneous space, project and
+ * snap the polygon to 1/VOXR_SUBPIXEL pixel, find its depth plane and the tiles of its pixel bounding box,
+ * and count them (one raster record each).
  *
  * Clipping computes every intersection from the edge's two endpoints in a canonical order (the
  * lexicographically smaller clip-space point first), so two triangles sharing an edge get bit-identical clip
@@ -165,6 +166,9 @@ inline uint raster_setup_triangle(const RasterParams* p, __global const float4* 
     area += (long)px[i] * py[j] - (long)px[j] * py[i];
   }
   if (area == 0) return 0;
+  /* Face culling: area < 0 is a front face (counter-clockwise as the viewer sees it). */
+  if (p->cull == VOXR_CULL_FRONT && area < 0) return 0;
+  if (p->cull == VOXR_CULL_BACK && area > 0) return 0;
 
   /* Pixel centres (x + 1/2) S within the bounding box, clamped to the image. */
   long lo_x = px[0], hi_x = px[0], lo_y = py[0], hi_y = py[0];

@@ -204,6 +204,14 @@ typedef struct VoxelRefractParams {
 /* Voxels per side of a brick of the empty-space grid voxel refraction skips through. */
 #define VOXR_BRICK 8
 
+/* What image_space.cl needs besides its buffers (host/render/image_space_refraction.h). */
+typedef struct ImageSpaceParams {
+  uint triangle_count; /* of the mesh */
+  uint inward_count;   /* entries of the per-vertex inward distances (d_N) */
+  uint iterations;     /* of the nearby-geometry lookup */
+  float scene_size;    /* the lookup's first guess where the exit point's pixel shows no opaque surface */
+} ImageSpaceParams;
+
 /* Where a receiver finds its column and slab in a light's grid (host/render/light_frame.h). Orthographic
  * (directional light): grid = to_light * p. Frustum (point light): q = to_light * p is the point in the
  * light's view (z along the view, world units) and grid = ((q.x / q.z - u0) * inv_du,
@@ -243,8 +251,14 @@ typedef struct RasterParams {
   uint triangle_count; /* of the mesh */
   uint material_count; /* triangles whose material id is not below this are not drawn */
   float guard[2];      /* guard-band planes |x| <= guard[0] w, |y| <= guard[1] w */
-  uint pad;
+  uint cull;           /* VOXR_CULL_*: which faces are not drawn */
 } RasterParams;
+
+/* Face culling (RasterParams.cull): the faces dropped, front (counter-clockwise as the viewer sees it) or
+ * back (VOXR_PRIM_BACK); a culled triangle gets vertex_count 0. */
+#define VOXR_CULL_NONE 0u
+#define VOXR_CULL_FRONT 1u
+#define VOXR_CULL_BACK 2u
 
 /* A primitive's flags: the triangle appears clockwise in the image as the viewer sees it (rows up), i.e. it
  * shows its back when the mesh winds counter-clockwise seen from outside. */
@@ -322,12 +336,14 @@ typedef struct RenderCamera {
   SIZE(VoxelRefractParams) OFFSET(VoxelRefractParams, origin) OFFSET(VoxelRefractParams, voxel_size)      \
   OFFSET(VoxelRefractParams, two_surface) OFFSET(VoxelRefractParams, cos_threshold)                       \
   OFFSET(VoxelRefractParams, max_steps) OFFSET(VoxelRefractParams, brick_dims)                           \
+  SIZE(ImageSpaceParams) OFFSET(ImageSpaceParams, triangle_count) OFFSET(ImageSpaceParams, inward_count)  \
+  OFFSET(ImageSpaceParams, iterations) OFFSET(ImageSpaceParams, scene_size)                               \
   SIZE(ShadowFrame) OFFSET(ShadowFrame, to_light) OFFSET(ShadowFrame, dims)                               \
   OFFSET(ShadowFrame, projective) OFFSET(ShadowFrame, u0) OFFSET(ShadowFrame, inv_dv)                     \
   OFFSET(ShadowFrame, depth_scale) OFFSET(ShadowFrame, voxel_size)                                        \
   SIZE(RasterParams) OFFSET(RasterParams, view_projection) OFFSET(RasterParams, width)                    \
   OFFSET(RasterParams, height) OFFSET(RasterParams, kind_mask) OFFSET(RasterParams, triangle_count)       \
-  OFFSET(RasterParams, material_count) OFFSET(RasterParams, guard)                                        \
+  OFFSET(RasterParams, material_count) OFFSET(RasterParams, guard) OFFSET(RasterParams, cull)             \
   SIZE(RasterPrim) OFFSET(RasterPrim, vertex_count) OFFSET(RasterPrim, flags)                             \
   OFFSET(RasterPrim, first_tile) OFFSET(RasterPrim, tiles_x) OFFSET(RasterPrim, depth)                    \
   OFFSET(RasterPrim, x) OFFSET(RasterPrim, y)                                                             \

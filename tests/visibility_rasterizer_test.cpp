@@ -318,6 +318,42 @@ TEST(Visibility, SharedEdgesClosedSphereFromOutside) {
   expect_exactly_once(sphere, camera_target(frame), 1, 1, "sphere");
 }
 
+TEST(Visibility, FaceCullingKeepsExactlyTheOtherFaces) {
+  // A closed sphere and a box behind it: culling front faces keeps exactly the back layer's coverage,
+  // culling back faces the front layer's, and both match the reference bit for bit.
+  TriangleSoup scene = make_uv_sphere(1.0f, 20, 40);
+  scene.append(make_box(glm::vec3(-1.5f, -1.5f, -3.0f), glm::vec3(1.5f, 1.5f, -2.0f)));
+  const RasterTarget all = camera_target(look_at(glm::vec3(0.4f, 0.7f, 3.0f), glm::vec3(0), 151, 127));
+  RasterTarget back_only = all, front_only = all;
+  back_only.cull = FaceCull::kFront;
+  front_only.cull = FaceCull::kBack;
+  const DeviceRaster none = run_device(scene, all, kOpaque5, true);
+  const DeviceRaster backs = run_device(scene, back_only, kOpaque5, true);
+  const DeviceRaster fronts = run_device(scene, front_only, kOpaque5, true);
+  size_t front_pixels = 0, back_pixels = 0, deeper = 0;
+  for (size_t i = 0; i < none.words.size(); ++i) {
+    ASSERT_EQ(backs.counts[2 * i], 0u) << "a front face drawn with front faces culled, pixel " << i;
+    ASSERT_EQ(fronts.counts[2 * i + 1], 0u) << "a back face drawn with back faces culled, pixel " << i;
+    ASSERT_EQ(backs.counts[2 * i + 1], none.counts[2 * i + 1]) << "pixel " << i;
+    ASSERT_EQ(fronts.counts[2 * i], none.counts[2 * i]) << "pixel " << i;
+    front_pixels += none.counts[2 * i] > 0;
+    back_pixels += none.counts[2 * i + 1] > 0;
+    // The unculled word is the nearer of the two layers' words.
+    ASSERT_EQ(none.words[i], std::min(backs.words[i], fronts.words[i])) << "pixel " << i;
+    deeper += backs.words[i] != kEmpty && backs.words[i] > fronts.words[i];
+  }
+  EXPECT_GT(front_pixels, size_t(all.width) * all.height / 10);
+  EXPECT_GT(back_pixels, size_t(all.width) * all.height / 10);
+  EXPECT_GT(deeper, back_pixels / 2) << "the back layer lies behind the front one";
+  for (const RasterTarget* t : {&back_only, &front_only}) {
+    const ReferenceRaster ref = reference_raster(scene, *t, kOpaque5);
+    const DeviceRaster& dev = t == &back_only ? backs : fronts;
+    EXPECT_EQ(compare_words(ref.visibility, dev.words, t->width), "");
+    EXPECT_TRUE(ref.counts == dev.counts);
+    EXPECT_EQ(ref.records, dev.stats.records);
+  }
+}
+
 TEST(Visibility, HugeTriangleSplitsIntoManyWorkItems) {
   TriangleSoup soup;
   for (glm::vec2 p : {glm::vec2(-1, -1), glm::vec2(3, -1), glm::vec2(-1, 3)})

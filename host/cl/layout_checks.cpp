@@ -3,6 +3,8 @@
 // kernel vector types have their width.
 #include <glm/glm.hpp>
 
+#include <cstddef>
+
 #include "cl/cl_runtime.h"
 #include "voxr_layout.h"
 
@@ -21,8 +23,10 @@ static_assert(sizeof(RenderLight) == 64);
 static_assert(sizeof(SurfaceSample) == 64);
 static_assert(sizeof(RefractionPath) == 64);
 static_assert(sizeof(VoxelRefractParams) == 48);
+static_assert(sizeof(ImageSpaceParams) == 16);
 static_assert(sizeof(ShadowFrame) == 96);
 static_assert(sizeof(RasterParams) == 96);
+static_assert(offsetof(RasterParams, cull) == 92, "the cull flag took the former pad word");
 static_assert(sizeof(RasterPrim) == 96);
 static_assert(sizeof(RasterRecord) == 8);
 static_assert(sizeof(RenderCamera) == 64);

@@ -12,7 +12,17 @@
 //      position there, move the guess to its distance; a fixed number of iterations); a ray that leaves the
 //      image or finds no opaque surface sees the environment.
 // Outputs the same end samples and RefractionPath records as the voxel methods (voxr_layout.h); Schlick F at
-// the first surface, 1 - F at each of the two refractions, Beer-Lambert over d.
+// the first surface, 1 - F at each of the two refractions, Beer-Lambert over d (the front dielectric's ior
+// and absorption throughout). Every refracting pixel records 2 events (VOXR_PATH_TIR where the exit mirrors)
+// and exit_position P2; an opaque end is the opaque buffer's resolved sample with its normals turned against
+// the exit ray. Details and fallbacks (kernels/image_space.cl):
+//   - at normal incidence (theta_i < 1e-3) the blend uses its limit theta_t / theta_i -> 1 / ior;
+//   - no back face at the pixel, or one not behind the front: d = d_N; no d_N (inward_distances shorter than
+//     the mesh's vertices): d = d_V;
+//   - P2 off the image or on a pixel without a back face: the back face at the pixel itself; none there
+//     either: the ray leaves along T1 with 1 - F0;
+//   - the lookup's first guess is the distance from P2 to the opaque sample at P2's pixel, else the size of
+//     the mesh's bounds; kImageSpaceIterations (4) lookups; the last one's sample is the end.
 #pragma once
 
 #include <vector>
@@ -47,6 +57,10 @@ class ImageSpaceRefraction {
   ClRuntime& cl_;
   VisibilityRasterizer& rasterizer_;
   GrowingBuffer inward_distance_, back_visibility_, back_samples_, opaque_visibility_, opaque_samples_;
+  uint32_t inward_count_ = 0;
 };
+
+// The nearby-geometry lookups per pixel (Wyman's fixed iteration count).
+inline constexpr uint32_t kImageSpaceIterations = 4;
 
 }  // namespace voxr

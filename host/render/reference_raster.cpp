@@ -145,6 +145,8 @@ uint32_t reference_raster_prim(const TriangleSoup& soup, uint32_t t, const Raste
     area += a.x * b.y - b.x * a.y;
   }
   if (area == 0) return 0;
+  if (p.cull == VOXR_CULL_FRONT && area < 0) return 0;  // a front face
+  if (p.cull == VOXR_CULL_BACK && area > 0) return 0;   // a back face
 
   int64_t lo_x = v[0].x, hi_x = v[0].x, lo_y = v[0].y, hi_y = v[0].y;
   for (const glm::i64vec2& q : v) {

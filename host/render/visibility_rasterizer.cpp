@@ -38,6 +38,7 @@ RasterParams make_raster_params(const RasterTarget& target, uint32_t triangle_co
   p.width = target.width;
   p.height = target.height;
   p.kind_mask = target.kind_mask;
+  p.cull = uint32_t(target.cull);
   p.triangle_count = triangle_count;
   p.material_count = material_count;
   // Screen x = (x/w + 1) width / 2 stays within +-VOXR_RASTER_GUARD pixels when |x/w| <= 2 GUARD / width - 1.

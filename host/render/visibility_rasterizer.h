@@ -23,6 +23,15 @@
 
 namespace voxr {
 
+// The faces a RasterTarget does not draw (VOXR_CULL_* in RasterParams.cull). A front face is
+// counter-clockwise as the viewer sees it, i.e. seen from outside a mesh wound counter-clockwise from
+// outside; a back face is one RasterPrim marks VOXR_PRIM_BACK.
+enum class FaceCull : uint32_t {
+  kNone = VOXR_CULL_NONE,    // every face is drawn
+  kFront = VOXR_CULL_FRONT,  // front faces are dropped: only back faces are drawn
+  kBack = VOXR_CULL_BACK,    // back faces are dropped: only front faces are drawn
+};
+
 // One view to rasterize: a camera, or a light's orthographic or perspective frame.
 struct RasterTarget {
   // Anchor-relative world -> clip (column-major, as CameraFrame::view_projection): the image spans x/w and
@@ -30,8 +39,9 @@ struct RasterTarget {
   // plane); a triangle wholly beyond z/w = 1 is dropped, one reaching beyond it is drawn with its depths
   // clamped to 1.
   glm::mat4 view_projection{1.0f};
-  uint32_t width = 0, height = 0;  // pixels, 1 .. VOXR_RASTER_MAX_SIDE each
-  uint32_t kind_mask = 7;          // bit 1 << RenderMaterial.kind of the triangles drawn
+  uint32_t width = 0, height = 0;   // pixels, 1 .. VOXR_RASTER_MAX_SIDE each
+  uint32_t kind_mask = 7;           // bit 1 << RenderMaterial.kind of the triangles drawn
+  FaceCull cull = FaceCull::kNone;  // the faces not drawn
 };
 
 // The target of a camera frame: its view_projection and size, every material kind.
