@@ -83,6 +83,34 @@ inline int march_begin(March* m, const GridView* g, float3 origin, float3 dir, u
   return gv_contains(g, m->i, m->j, m->k);
 }
 
+/* march_begin for a new direction at a point of voxel (i, j, k), which stays the current voxel: after an
+ * event the march goes on from the boundary voxel it happened in (floor() of a point on a voxel face could
+ * pick the empty neighbour, leave the boundary run and meet the same surface again). */
+inline void march_restart(March* m, const GridView* g, float3 origin, float3 dir, uint dda, int i, int j, int k) {
+  march_begin(m, g, origin, dir, dda);
+  m->i = i;
+  m->j = j;
+  m->k = k;
+  m->t = 0.0f;
+  if (dda) {
+    GvRay* r = &m->ray;
+    const float3 inv = (float3)(1.0f) / dir;
+    r->i = i;
+    r->j = j;
+    r->k = k;
+    r->si = dir.x > 0.0f ? 1 : dir.x < 0.0f ? -1 : 0;
+    r->sj = dir.y > 0.0f ? 1 : dir.y < 0.0f ? -1 : 0;
+    r->sk = dir.z > 0.0f ? 1 : dir.z < 0.0f ? -1 : 0;
+    r->dtx = r->si != 0 ? fabs(inv.x) : INFINITY;
+    r->dty = r->sj != 0 ? fabs(inv.y) : INFINITY;
+    r->dtz = r->sk != 0 ? fabs(inv.z) : INFINITY;
+    r->tx = r->si != 0 ? fmax(((float)(i + (r->si > 0)) - origin.x) * inv.x, 0.0f) : INFINITY;
+    r->ty = r->sj != 0 ? fmax(((float)(j + (r->sj > 0)) - origin.y) * inv.y, 0.0f) : INFINITY;
+    r->tz = r->sk != 0 ? fmax(((float)(k + (r->sk > 0)) - origin.z) * inv.z, 0.0f) : INFINITY;
+    r->t = 0.0f;
+  }
+}
+
 /* The next voxel; 0 when the march leaves the grid. */
 inline int march_step(March* m, const GridView* g, uint dda) {
   if (dda) {
@@ -132,17 +160,23 @@ inline int brick_empty(const VoxelRefractParams* p, __global const uint* bricks,
   return ((bricks[brick >> 5] >> (uint)(brick & 31)) & 1u) == 0u;
 }
 
-/* The ray parameter where origin + t dir leaves brick box [lo, lo + VOXR_BRICK]^3 (dir has a non-zero
- * component). */
+/* The ray parameter where origin + t dir leaves brick box [lo, lo + VOXR_BRICK]^3, >= 0. Components under
+ * 1e-6 count as parallel: a ray running along a brick face would otherwise "leave" it at t = 0 forever. */
 inline float brick_exit(float3 origin, float3 dir, int i, int j, int k) {
   const float3 lo = (float3)((float)(i / VOXR_BRICK * VOXR_BRICK), (float)(j / VOXR_BRICK * VOXR_BRICK),
                              (float)(k / VOXR_BRICK * VOXR_BRICK));
   const float3 hi = lo + (float3)((float)VOXR_BRICK);
   float t = INFINITY;
-  if (dir.x != 0.0f) t = fmin(t, ((dir.x > 0.0f ? hi.x : lo.x) - origin.x) / dir.x);
-  if (dir.y != 0.0f) t = fmin(t, ((dir.y > 0.0f ? hi.y : lo.y) - origin.y) / dir.y);
-  if (dir.z != 0.0f) t = fmin(t, ((dir.z > 0.0f ? hi.z : lo.z) - origin.z) / dir.z);
-  return t;
+  if (fabs(dir.x) > 1e-6f) t = fmin(t, ((dir.x > 0.0f ? hi.x : lo.x) - origin.x) / dir.x);
+  if (fabs(dir.y) > 1e-6f) t = fmin(t, ((dir.y > 0.0f ? hi.y : lo.y) - origin.y) / dir.y);
+  if (fabs(dir.z) > 1e-6f) t = fmin(t, ((dir.z > 0.0f ? hi.z : lo.z) - origin.z) / dir.z);
+  return fmax(t, 0.0f);
+}
+
+inline int same_brick(float3 q, int i, int j, int k) {
+  const int3 v = convert_int3(floor(q));
+  return v.x >= 0 && v.y >= 0 && v.z >= 0 && v.x / VOXR_BRICK == i / VOXR_BRICK &&
+         v.y / VOXR_BRICK == j / VOXR_BRICK && v.z / VOXR_BRICK == k / VOXR_BRICK;
 }
 
 __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_voxel(
@@ -210,9 +244,11 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
       in_run = 0;
       if (brick_empty(&p, bricks, m.i, m.j, m.k)) {
         /* Skip the rest of the empty brick: restart the march just past its exit. */
-        inside_grid = march_begin(&m, &g, here + (brick_exit(here, dir, m.i, m.j, m.k) + 1e-3f) * dir, dir,
-                                  p.step_dda);
-        examine_current = 1;
+        const float3 beyond = here + (brick_exit(here, dir, m.i, m.j, m.k) + 1e-3f) * dir;
+        if (!same_brick(beyond, m.i, m.j, m.k)) { /* else step on voxel by voxel: no progress to gain */
+          inside_grid = march_begin(&m, &g, beyond, dir, p.step_dda);
+          examine_current = 1;
+        }
       }
       continue;
     }
@@ -275,7 +311,7 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
       break;
     }
     dir = new_dir;
-    inside_grid = march_begin(&m, &g, here, dir, p.step_dda);
+    march_restart(&m, &g, here, dir, p.step_dda, m.i, m.j, m.k);
   }
   if (!ended) {
     absorb_segment(&throughput, materials, media, depth, last, march_point(&m), p.voxel_size);
