@@ -15,6 +15,9 @@ struct RefractionError {
   double psnr = 0.0;  // dB, peak 1 (image_metrics.h psnr)
   // Exit direction: angle between the two paths' exit_direction, in degrees, over pixels where both paths
   // met at least one interface and both end in the environment (VOXR_PATH_ENV).
+  // p95: nearest rank (the smallest angle with at least 95 % of them at or below it). Angles are
+  // atan2(|a x b|, a . b) in double. Both are 0 when there are no such pixels, NaN when an exit direction
+  // is not finite.
   double angle_mean_deg = 0.0, angle_p95_deg = 0.0;
   uint64_t angle_pixels = 0;
   // Pixels where either path met an interface, and the share of them whose event sequence differs: the

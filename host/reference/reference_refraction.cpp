@@ -1,14 +1,313 @@
 #include "reference/reference_refraction.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "core/clock.h"
 #include "core/error.h"
+#include "reference/parallel_blocks.h"
+#include "refraction.h"
+#include "render/shade_host.h"
 
 namespace voxr {
 
-// Placeholder until the reference branch lands.
-RefractionReference render_refraction_reference(const ReferenceScene&, const std::vector<RenderMaterial>&,
-                                                const RenderLight&, const EnvironmentMap&, const CameraFrame&,
-                                                ReferenceModel, uint32_t) {
-  fail("the refraction reference is not built yet");
+namespace {
+
+// Nested dielectrics tracked, as refract_voxel.cl's MAX_MEDIA (entering a fifth is not recorded).
+constexpr uint32_t kMaxMedia = 4;
+// Rays that leave a surface ignore hits nearer than this, relative to ReferenceScene::scene_size(): the
+// surface they leave (its hit point lies off its plane by rounding) and its neighbours at a shared edge.
+constexpr float kSurfaceEpsilon = 1e-4f;
+// Surfaces met along one path or branch at most (sheets included): a guard against rays caught between
+// coincident surfaces; a path that reaches it is lost.
+constexpr uint32_t kMaxSegments = 4096;
+// Full model: branches whose weight (largest channel) falls below this are not traced.
+constexpr float kMinBranchWeight = 1e-3f;
+
+glm::vec3 vec(const float* v) {
+  return glm::vec3(v[0], v[1], v[2]);
+}
+
+void store(float* out, const glm::vec3& v) {
+  out[0] = v.x;
+  out[1] = v.y;
+  out[2] = v.z;
+}
+
+// kernels/refraction_path.h rp_reflect: d mirrored about n (both unit).
+glm::vec3 reflect(const glm::vec3& d, const glm::vec3& n) {
+  return d - 2.0f * glm::dot(d, n) * n;
+}
+
+// kernels/refraction_path.h rp_refract, line for line: refracts unit d at a surface of unit normal n (either
+// orientation) from index n1 into n2. True and the refracted direction in t, or false on total internal
+// reflection (t is then the mirror direction); cos_i receives the incidence cosine.
+bool refract(const glm::vec3& d, glm::vec3 n, float n1, float n2, glm::vec3& t, float& cos_i) {
+  if (glm::dot(d, n) > 0.0f) n = -n;
+  const float ci = std::min(-glm::dot(d, n), 1.0f);
+  cos_i = ci;
+  const float ct = voxr_refracted_cos(ci, n1, n2);
+  if (ct < 0.0f) {
+    t = reflect(d, n);
+    return false;
+  }
+  const float eta = n1 / n2;
+  t = glm::normalize(eta * d + (eta * ci - ct) * n);
+  return true;
+}
+
+// kernels/refraction_path.h rp_identity.
+RefractionPath identity_path(const glm::vec3& dir) {
+  RefractionPath p{};
+  store(p.throughput, glm::vec3(1.0f));
+  p.events = 0u;
+  p.fresnel = 0.0f;
+  store(p.exit_direction, dir);
+  return p;
+}
+
+SurfaceSample no_surface() {
+  SurfaceSample s{};
+  s.triangle = VOXR_NO_TRIANGLE;
+  return s;
+}
+
+// The media a path is inside, innermost last (refract_voxel.cl's media[] and depth).
+struct Media {
+  uint32_t id[kMaxMedia] = {};
+  uint32_t depth = 0;
+
+  // Where `material` is in the stack (the innermost occurrence), -1 when the path is outside it.
+  int find(uint32_t material) const {
+    int inside = -1;
+    for (uint32_t d = 0; d < depth; ++d)
+      if (id[d] == material) inside = int(d);
+    return inside;
+  }
+  void remove(int at) {
+    for (uint32_t d = uint32_t(at); d + 1 < depth; ++d) id[d] = id[d + 1];
+    --depth;
+  }
+  void push(uint32_t material) {
+    if (depth < kMaxMedia) id[depth++] = material;
+  }
+};
+
+class Tracer {
+ public:
+  Tracer(const ReferenceScene& scene, const std::vector<RenderMaterial>& materials, const RenderLight& light,
+         const EnvironmentMap& environment, uint32_t full_depth)
+      : scene_(scene),
+        materials_(materials),
+        light_(light),
+        environment_(environment),
+        epsilon_(kSurfaceEpsilon * scene.scene_size()),
+        full_depth_(full_depth) {}
+
+  // The matched model (refract_voxel.cl's, exact triangles for voxels) for the camera ray eye + t dir.
+  void matched(const glm::vec3& eye, glm::vec3 dir, SurfaceSample& end, RefractionPath& path) const {
+    const SurfaceSample s = scene_.intersect(eye, dir);
+    path = identity_path(dir);
+    if (s.triangle == VOXR_NO_TRIANGLE || material(s.material).kind != VOXR_MATERIAL_DIELECTRIC) {
+      end = s;
+      return;
+    }
+    // The front surface: Schlick's F reflects the environment, 1 - F refracts in (with the shading normal,
+    // turned towards the eye).
+    const glm::vec3 n_front = vec(s.normal);
+    const float n_in = material(s.material).ior;
+    glm::vec3 t_dir;
+    float cos_i;
+    refract(dir, n_front, 1.0f, n_in, t_dir, cos_i);
+    path.fresnel = voxr_schlick(cos_i, 1.0f, n_in);
+    store(path.reflect_direction, reflect(dir, n_front));
+    glm::vec3 throughput(1.0f - path.fresnel);
+    uint32_t events = 1u;
+    dir = t_dir;
+    glm::vec3 here = vec(s.position), exit = here;
+    Media media;
+    media.push(s.material);
+
+    end = no_surface();
+    bool ended = false;
+    for (uint32_t segment = 0;; ++segment) {
+      if (segment >= kMaxSegments) {
+        events |= VOXR_PATH_LOST;
+        ended = true;
+        break;
+      }
+      const SurfaceSample hit = scene_.intersect(here, dir, epsilon_);
+      if (hit.triangle == VOXR_NO_TRIANGLE) break;  // leaves the scene: the environment
+      if (media.depth > 0) throughput *= absorption(media, hit.distance);
+      here = vec(hit.position);
+      const RenderMaterial& m = material(hit.material);
+      if (m.kind == VOXR_MATERIAL_OPAQUE) {
+        end = hit;
+        ended = true;
+        break;
+      }
+      if (m.kind == VOXR_MATERIAL_SHEET) {
+        throughput *= vec(m.transmittance);
+        continue;
+      }
+      // A dielectric interface: leave the material if inside it, else enter it.
+      const int inside = media.find(hit.material);
+      const float n1 = top_ior(media);
+      const float n2 = inside >= 0 ? (inside > 0 ? material(media.id[inside - 1]).ior : 1.0f) : m.ior;
+      glm::vec3 new_dir;
+      if (refract(dir, vec(hit.normal), n1, n2, new_dir, cos_i)) {
+        throughput *= 1.0f - voxr_schlick(cos_i, n1, n2);
+        if (inside >= 0)
+          media.remove(inside);
+        else
+          media.push(hit.material);
+      } else {
+        events |= VOXR_PATH_TIR;
+      }
+      ++events;
+      exit = here;
+      if ((events & VOXR_PATH_EVENTS_MASK) >= VOXR_PATH_MAX_EVENTS) {
+        events |= VOXR_PATH_LOST;
+        ended = true;
+        break;
+      }
+      dir = new_dir;
+    }
+    if (!ended) events |= VOXR_PATH_ENV;
+    store(path.throughput, throughput);
+    path.events = events;
+    store(path.exit_position, exit);
+    store(path.exit_direction, dir);
+  }
+
+  // The full model: radiance along origin + t dir (t > t_near) for a ray inside `media` that has met
+  // `interfaces` dielectric interfaces so far and carries `weight` (its largest channel) to the pixel.
+  // `camera`: the camera ray itself, whose first surface is shaded whether opaque or a sheet (as the
+  // primary sample of every other method); any later ray crosses sheets, multiplied by their transmittance.
+  glm::vec3 full(glm::vec3 origin, const glm::vec3& dir, const Media& media, uint32_t interfaces,
+                 float weight, bool camera) const {
+    glm::vec3 carried(1.0f);
+    float t_near = camera ? 0.0f : epsilon_;
+    for (uint32_t segment = 0; segment < kMaxSegments; ++segment) {
+      const SurfaceSample hit = scene_.intersect(origin, dir, t_near);
+      if (hit.triangle == VOXR_NO_TRIANGLE) return carried * environment_.lookup(dir);
+      if (media.depth > 0) carried *= absorption(media, hit.distance);
+      const glm::vec3 here = vec(hit.position);
+      const RenderMaterial& m = material(hit.material);
+      if (m.kind == VOXR_MATERIAL_OPAQUE || (m.kind == VOXR_MATERIAL_SHEET && camera && segment == 0)) {
+        const glm::vec3 t = scene_.transmittance(light_, here, hit.triangle);
+        return carried * shade_surface_sample(hit, t, materials_, light_);
+      }
+      if (m.kind == VOXR_MATERIAL_SHEET) {
+        carried *= vec(m.transmittance);
+        origin = here;
+        t_near = epsilon_;
+        continue;
+      }
+      if (interfaces >= full_depth_) return glm::vec3(0.0f);
+      const int inside = media.find(hit.material);
+      const float n1 = top_ior(media);
+      const float n2 = inside >= 0 ? (inside > 0 ? material(media.id[inside - 1]).ior : 1.0f) : m.ior;
+      glm::vec3 normal = vec(hit.normal);
+      if (glm::dot(dir, normal) > 0.0f) normal = -normal;
+      glm::vec3 t_dir;
+      float cos_i;
+      const bool refracted = refract(dir, normal, n1, n2, t_dir, cos_i);
+      const float f = refracted ? voxr_fresnel_exact(cos_i, n1, n2) : 1.0f;
+      const float w = weight * std::max({carried.x, carried.y, carried.z});
+      glm::vec3 radiance(0.0f);
+      if (f * w >= kMinBranchWeight)
+        radiance += f * full(here, reflect(dir, normal), media, interfaces + 1, f * w, false);
+      if (refracted && (1.0f - f) * w >= kMinBranchWeight) {
+        Media next = media;
+        if (inside >= 0)
+          next.remove(inside);
+        else
+          next.push(hit.material);
+        radiance += (1.0f - f) * full(here, t_dir, next, interfaces + 1, (1.0f - f) * w, false);
+      }
+      return carried * radiance;
+    }
+    return glm::vec3(0.0f);  // caught between surfaces: lost
+  }
+
+ private:
+  const RenderMaterial& material(uint32_t id) const {
+    if (id >= materials_.size())
+      fail("refraction reference: a triangle has material {} but there are {} materials", id,
+           materials_.size());
+    return materials_[id];
+  }
+  float top_ior(const Media& media) const {
+    return media.depth > 0 ? material(media.id[media.depth - 1]).ior : 1.0f;
+  }
+  // Beer-Lambert over `length` world units inside the innermost medium.
+  glm::vec3 absorption(const Media& media, float length) const {
+    const glm::vec3 sigma = vec(material(media.id[media.depth - 1]).absorption);
+    return glm::exp(-sigma * length);
+  }
+
+  const ReferenceScene& scene_;
+  const std::vector<RenderMaterial>& materials_;
+  const RenderLight& light_;
+  const EnvironmentMap& environment_;
+  float epsilon_;
+  uint32_t full_depth_;
+};
+
+}  // namespace
+
+RefractionReference render_refraction_reference(const ReferenceScene& scene,
+                                                const std::vector<RenderMaterial>& materials,
+                                                const RenderLight& light, const EnvironmentMap& environment,
+                                                const CameraFrame& camera, ReferenceModel model,
+                                                uint32_t full_depth) {
+  if (camera.width == 0 || camera.height == 0)
+    fail("refraction reference: the camera has {}x{} pixels", camera.width, camera.height);
+  RefractionReference out;
+  out.build_ms = scene.build_ms();
+  const uint32_t width = camera.width, height = camera.height;
+  const size_t pixels = size_t(width) * height;
+  out.ends.resize(pixels);
+  out.paths.resize(pixels);
+  const Tracer tracer(scene, materials, light, environment, full_depth);
+
+  // One row per block: neighbouring rays share BVH nodes. Every pixel is computed by one call, so nothing
+  // depends on the number of threads.
+  Clock::time_point start = Clock::now();
+  parallel_blocks(height, 1, [&](size_t y0, size_t y1) {
+    for (size_t y = y0; y < y1; ++y)
+      for (uint32_t x = 0; x < width; ++x) {
+        const size_t i = y * width + x;
+        tracer.matched(camera.eye, camera.ray_direction(float(x) + 0.5f, float(y) + 0.5f), out.ends[i],
+                       out.paths[i]);
+      }
+  });
+  if (model == ReferenceModel::kFull) {
+    // The full image is traced, shadows and shading included (shade_ms stays 0).
+    out.image = ImageRgba(width, height, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    parallel_blocks(height, 1, [&](size_t y0, size_t y1) {
+      for (size_t y = y0; y < y1; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+          const glm::vec3 dir = camera.ray_direction(float(x) + 0.5f, float(y) + 0.5f);
+          out.image.pixels[y * width + x] =
+              glm::vec4(tracer.full(camera.eye, dir, Media{}, 0, 1.0f, true), 1.0f);
+        }
+    });
+  }
+  out.trace_ms = ms_since(start);
+
+  start = Clock::now();
+  out.transmittance = scene.transmittance(light, out.ends);
+  out.shadow_ms = ms_since(start);
+
+  if (model == ReferenceModel::kMatched) {
+    start = Clock::now();
+    out.image =
+        shade_paths(out.ends, out.transmittance, out.paths, materials, light, environment, width, height);
+    out.shade_ms = ms_since(start);
+  }
+  return out;
 }
 
 }  // namespace voxr

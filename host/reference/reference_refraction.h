@@ -8,7 +8,11 @@
 //            reflectance (voxr_fresnel_exact), to `full_depth` bounces; reflected rays that reach an opaque
 //            surface are shaded there like any other: the difference from it is the model's.
 // Opaque ends are shaded by the one shading model with the exact shadow transmittance
-// (ReferenceScene::transmittance) from the end point.
+// (ReferenceScene::transmittance) from the end point (shade_host.h shade_surface_sample).
+// Both: the camera ray's first surface, if opaque or a sheet, is shaded there (the primary sample, as every
+// method); any later ray crosses sheets, times their transmittance. Rays leaving a surface ignore hits
+// nearer than 1e-4 of ReferenceScene::scene_size(). Nested media are tracked as refract_voxel.cl does (a
+// stack of at most 4). The full model cuts branches whose weight (largest channel) is below 1e-3.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -34,7 +38,9 @@ struct RefractionReference {
                                          // transmitted branch), as the device methods write them
   std::vector<glm::vec3> transmittance;  // per pixel: to the light from its end (1 where it has no surface)
   double build_ms = 0.0;                 // the BVH build (ReferenceScene::build_ms)
-  double trace_ms = 0.0, shadow_ms = 0.0, shade_ms = 0.0;  // wall time of each pass (all cores)
+  // Wall time of each pass (all cores): trace the matched paths (and, full model, the whole full image,
+  // its shadow rays and shading included: its shade_ms is 0), the shadow rays from `ends`, shade_paths.
+  double trace_ms = 0.0, shadow_ms = 0.0, shade_ms = 0.0;
 };
 
 // Renders `scene` as `camera` sees it, one ray per pixel centre (camera.ray_direction(x + 0.5, y + 0.5)).

@@ -40,6 +40,13 @@ glm::vec3 vec(const float* v) {
 
 }  // namespace
 
+glm::vec3 shade_surface_sample(const SurfaceSample& s, const glm::vec3& transmittance,
+                               const std::vector<RenderMaterial>& materials, const RenderLight& light) {
+  if (s.material >= materials.size())
+    fail("shade: a sample has material {} of {}", s.material, materials.size());
+  return shade_surface(s, transmittance, materials, light, 0);
+}
+
 ImageRgba shade_samples(std::span<const SurfaceSample> samples, std::span<const glm::vec3> transmittance,
                         const std::vector<RenderMaterial>& materials, const RenderLight& light,
                         uint32_t width, uint32_t height) {

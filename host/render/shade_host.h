@@ -24,6 +24,12 @@ ImageRgba shade_samples(std::span<const SurfaceSample> samples, std::span<const 
                         const std::vector<RenderMaterial>& materials, const RenderLight& light,
                         uint32_t width, uint32_t height);
 
+// L at one surface (`s` has a triangle): shade_samples' value for that pixel, given the transmittance from
+// `s` to the light. The full refraction reference shades the ends of its branches with it. Throws
+// voxr::Error for a material id out of range.
+glm::vec3 shade_surface_sample(const SurfaceSample& s, const glm::vec3& transmittance,
+                               const std::vector<RenderMaterial>& materials, const RenderLight& light);
+
 // The image of refraction paths (voxr_layout.h RefractionPath), exactly as kernels/shade.cl: per pixel
 // fresnel * environment(reflect_direction) + throughput * L(end), where L(end) is environment(exit_direction)
 // for an end without a surface and shade_samples' value otherwise. All spans width * height long (throws
