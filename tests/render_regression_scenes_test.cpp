@@ -1,4 +1,5 @@
-// Render regression tests (tests/render_regression.h): small images of the shadow scenes by every method,
+// Render regression tests (tests/render_regression.h): small images of the shadow and refraction scenes by
+// every method,
 // against references stored in tests/render_references/ (regenerate on purpose with
 // VOXR_UPDATE_REFERENCES=1). Each test states its tolerance: the kernels are deterministic on one device;
 // the slack is for other devices' float rounding.
@@ -8,9 +9,13 @@
 
 #include "core/default_scene.h"
 #include "core/scene.h"
+#include "reference/inward_distance.h"
+#include "reference/reference_refraction.h"
+#include "reference/reference_scene.h"
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
+#include "render/vertex_normals.h"
 #include "render_regression.h"
 #include "test_support.h"
 
@@ -64,6 +69,63 @@ TEST(ShadowImages, FoliageConservativeMode) {
   EXPECT_TRUE(test::matches_reference(
       render_small(scene_file("foliage.json"), ShadowMethod::kVoxel, 128, RasterMode::kConservative),
       "foliage_voxel_conservative_128", {0.005, 0.05, 0.005}));
+}
+
+// The refraction scene with a figure inside a glass ball, 96 x 72, voxel shadows at 64, by `method` (grid
+// `res` for the voxel methods); the references through Embree.
+ImageRgba render_refraction(RefractionMethod method, uint32_t res = 128, StepRule step = StepRule::kDda,
+                            NormalKind normals = NormalKind::kSmooth) {
+  Scene scene = scene_file("ball-figure.json");
+  const std::vector<Material> materials = scene.materials;
+  const EnvironmentMap environment = make_environment_map(scene.environment);
+  const TriangleSoup soup = take_scene_triangles(scene);
+  const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, soup.bounds(), 96, 72);
+  const RenderLight light = render_light(scene.light, environment.mean(), soup.anchor);
+  if (is_reference_refraction(method)) {
+    const ReferenceScene reference(soup, materials);
+    return render_refraction_reference(
+               reference, render_materials(materials), light, environment, camera,
+               method == RefractionMethod::kReference ? ReferenceModel::kMatched : ReferenceModel::kFull)
+        .image;
+  }
+  FrameRenderer renderer(test::runtime());
+  renderer.set_scene(soup, materials);
+  renderer.set_environment(environment);
+  if (method == RefractionMethod::kImageSpace) {
+    const ReferenceScene reference(soup, materials);
+    renderer.set_inward_distances(inward_distances(reference, soup, materials, vertex_normals(soup)));
+  }
+  RenderOptions o;
+  o.shadows = ShadowMethod::kVoxel;
+  o.shadow_resolution = 64;
+  o.refraction.method = method;
+  o.refraction.resolution = res;
+  o.refraction.step = step;
+  o.refraction.normals = normals;
+  renderer.prepare(o);
+  return renderer.render(light, camera, o).image;
+}
+
+TEST(RefractionImages, VoxelMultiBothStepRulesAndNormals) {
+  EXPECT_TRUE(test::matches_reference(render_refraction(RefractionMethod::kVoxelMulti),
+                                      "ball_figure_multi_dda_smooth", {0.005, 0.05, 0.005}));
+  EXPECT_TRUE(test::matches_reference(
+      render_refraction(RefractionMethod::kVoxelMulti, 128, StepRule::kPapers, NormalKind::kVoxel),
+      "ball_figure_multi_papers_voxel", {0.005, 0.05, 0.005}));
+}
+
+TEST(RefractionImages, VoxelTwoAndImageSpace) {
+  EXPECT_TRUE(test::matches_reference(render_refraction(RefractionMethod::kVoxelTwo), "ball_figure_two",
+                                      {0.005, 0.05, 0.005}));
+  EXPECT_TRUE(test::matches_reference(render_refraction(RefractionMethod::kImageSpace),
+                                      "ball_figure_image_space", {0.005, 0.05, 0.005}));
+}
+
+TEST(RefractionImages, References) {
+  EXPECT_TRUE(test::matches_reference(render_refraction(RefractionMethod::kReference),
+                                      "ball_figure_reference", {0.005, 0.05, 0.005}));
+  EXPECT_TRUE(test::matches_reference(render_refraction(RefractionMethod::kReferenceFull),
+                                      "ball_figure_reference_full", {0.005, 0.05, 0.005}));
 }
 
 }  // namespace

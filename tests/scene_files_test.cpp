@@ -34,6 +34,20 @@ constexpr size_t kTreeMin = 61750, kTreeMax = 68250;
 
 const SceneCounts kScenes[] = {
     {"bunny.json", 69668, 69668, false, "bunny.obj"},
+    // The refraction scenes (issue 10): floor (2) + sphere 48 x 96 (9,024).
+    {"glass-sphere.json", 9026, 9026, false, nullptr},
+    {"bunny-glass-114.json", 69668, 69668, false, "bunny.obj"},
+    {"bunny-glass-130.json", 69668, 69668, false, "bunny.obj"},
+    // Floor + vase 64 segments x 48 rows.
+    {"glass-vase.json", 12546, 12546, false, nullptr},
+    // Floor + ball (9,024) + torus 32 x 16 (1,024) + small sphere 16 x 32 (960).
+    {"ball-figure.json", 11010, 11010, false, nullptr},
+    // Floor + a 4-stack, 8-slice faceted sphere (48).
+    {"gem.json", 50, 50, false, nullptr},
+    // Floor + two concentric spheres.
+    {"thin-shell.json", 18050, 18050, false, nullptr},
+    // Floor + sphere + torus (1,024) + box (12).
+    {"sphere-nearby.json", 10062, 10062, false, nullptr},
     {"default.json", 8518, 8518, false, nullptr},
     {"refraction.json", 7816, 7816, false, nullptr},
     // Floor (2) + tree at density 108 (120 trunk + 2 x 32,400 leaves).

@@ -137,7 +137,8 @@ int run_render(const RenderArgs& args) {
   const TriangleSoup soup = take_scene_triangles(scene);
   validate_soup(soup, scene.source);
   // Without glass in the scene there is nothing to refract: no grid is built.
-  if (!has_dielectric(soup, materials) && !host_refraction) options.refraction.method = RefractionMethod::kNone;
+  if (!has_dielectric(soup, materials) && !host_refraction)
+    options.refraction.method = RefractionMethod::kNone;
   const bool refracting = options.refraction.method != RefractionMethod::kNone;
   const Bounds bounds = soup.bounds();
   const uint32_t width = size.x ? size.x : scene.camera.width, height = size.y ? size.y : scene.camera.height;
@@ -174,15 +175,14 @@ int run_render(const RenderArgs& args) {
     for (uint32_t f = 0; f < args.frames; ++f) {
       const auto frame_start = Clock::now();
       if (host_refraction) {
-        const ReferenceModel model =
-            asked_refraction == RefractionMethod::kReference ? ReferenceModel::kMatched : ReferenceModel::kFull;
+        const ReferenceModel model = asked_refraction == RefractionMethod::kReference
+                                         ? ReferenceModel::kMatched
+                                         : ReferenceModel::kFull;
         RefractionReference r =
             render_refraction_reference(*reference, render_mats, light, environment, camera, model);
         image = std::move(r.image);
-        report["ms"] = {{"bvh_build", r.build_ms},
-                        {"trace", r.trace_ms},
-                        {"shadow", r.shadow_ms},
-                        {"shade", r.shade_ms}};
+        report["ms"] = {
+            {"bvh_build", r.build_ms}, {"trace", r.trace_ms}, {"shadow", r.shadow_ms}, {"shade", r.shade_ms}};
         report["shadows"] = "reference";
       } else {
         ReferenceRender r = render_reference(*reference, render_mats, light, camera);
@@ -207,7 +207,8 @@ int run_render(const RenderArgs& args) {
     if (options.refraction.method == RefractionMethod::kImageSpace) {
       // Wyman's d_N, ray cast once per scene as the paper precomputes it offline.
       const auto start = Clock::now();
-      prepared.engine->set_inward_distances(inward_distances(*reference_scene(), soup, vertex_normals(soup)));
+      prepared.engine->set_inward_distances(
+          inward_distances(*reference_scene(), soup, materials, vertex_normals(soup)));
       precompute_ms = ms_since(start);
     }
     for (uint32_t f = 0; f < args.frames; ++f) {
@@ -253,8 +254,8 @@ int run_render(const RenderArgs& args) {
   if (args.compare_reference && refracting) {
     if (tty) fmt::print(stderr, "\r{:<60}\rtracing the matched reference...", "");
     const auto ref_start = Clock::now();
-    const RefractionReference r = render_refraction_reference(*reference_scene(), render_mats, light, environment,
-                                                              camera, ReferenceModel::kMatched);
+    const RefractionReference r = render_refraction_reference(*reference_scene(), render_mats, light,
+                                                              environment, camera, ReferenceModel::kMatched);
     const RefractionError e = refraction_error(image, paths, r.image, r.paths);
     const std::filesystem::path error_path = beside(args.output, "error");
     write_image(error_image(image, r.image), error_path.string());
@@ -275,7 +276,8 @@ int run_render(const RenderArgs& args) {
     const std::vector<glm::vec3> exact = reference_transmittance(*reference_scene(), light, samples);
     const std::vector<uint8_t> mask = shadow_receivers(samples, render_mats, light);
     const TransmittanceError e = transmittance_error(transmittance, exact, mask, 0.05);
-    const ImageRgba exact_image = shade_paths(samples, exact, paths, render_mats, light, environment, width, height);
+    const ImageRgba exact_image =
+        shade_paths(samples, exact, paths, render_mats, light, environment, width, height);
     const std::filesystem::path error_path = beside(args.output, "error");
     write_image(error_image(transmittance, exact, width, height, mask, 1.0), error_path.string());
     report["compare_reference"] = {{"transmittance_rmse", e.rmse},
@@ -301,7 +303,8 @@ int run_render(const RenderArgs& args) {
     if (report.contains("refraction_grid"))
       fmt::print(" (grid {}x{}x{}, {} step, {} normals, {:.1f} MiB)", stats.refraction_grid.dims.x,
                  stats.refraction_grid.dims.y, stats.refraction_grid.dims.z,
-                 step_rule_info(options.refraction.step).name, normal_kind_info(options.refraction.normals).name,
+                 step_rule_info(options.refraction.step).name,
+                 normal_kind_info(options.refraction.normals).name,
                  double(stats.refraction_bytes) / (1 << 20));
     else if (asked_refraction != options.refraction.method)
       fmt::print(" (the scene has no dielectric)");
@@ -321,11 +324,12 @@ int run_render(const RenderArgs& args) {
       const auto& c = report["compare_reference"];
       const std::string p = c["psnr"].is_number() ? fmt::format("{:.2f}", c["psnr"].get<double>()) : "inf";
       if (c.contains("rmse")) {
-        fmt::print("vs matched image RMSE {:.4f}, PSNR {} dB; exit direction error mean {:.2f} deg, 95th {:.2f} deg "
-                   "({} pixels); event sequence differs on {:.2f}% of {} refracted pixels; {} non-finite pixels\n",
-                   c["rmse"].get<double>(), p, c["angle_mean_deg"].get<double>(), c["angle_p95_deg"].get<double>(),
-                   c["angle_pixels"].get<uint64_t>(), 100.0 * c["event_mismatch_share"].get<double>(),
-                   c["refracted_pixels"].get<uint64_t>(), c["nonfinite_pixels"].get<uint64_t>());
+        fmt::print(
+            "vs matched image RMSE {:.4f}, PSNR {} dB; exit direction error mean {:.2f} deg, 95th {:.2f} deg "
+            "({} pixels); event sequence differs on {:.2f}% of {} refracted pixels; {} non-finite pixels\n",
+            c["rmse"].get<double>(), p, c["angle_mean_deg"].get<double>(), c["angle_p95_deg"].get<double>(),
+            c["angle_pixels"].get<uint64_t>(), 100.0 * c["event_mismatch_share"].get<double>(),
+            c["refracted_pixels"].get<uint64_t>(), c["nonfinite_pixels"].get<uint64_t>());
       } else {
         fmt::print(
             "vs exact   transmittance RMSE {:.4f}, max {:.3f}, {:.2f}% of {} receivers off by > 0.05, "
@@ -345,7 +349,8 @@ int run_render(const RenderArgs& args) {
 
 Command add_render(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
-  CLI::App* sub = app.add_subcommand("render", "Render a scene with transparent shadows and refraction (.png or .exr)");
+  CLI::App* sub =
+      app.add_subcommand("render", "Render a scene with transparent shadows and refraction (.png or .exr)");
   sub->add_option("input", args->input, "scene file (.json) or mesh; omitted: the built-in default scene");
   sub->add_option("-o,--output", args->output, "image: .png (8-bit sRGB) or .exr (linear float)")
       ->capture_default_str();
@@ -375,27 +380,30 @@ Command add_render(CLI::App& app) {
   sub->add_option("--res", args->res, "voxel refraction: voxels along the scene's longest side")
       ->check(CLI::Range(2u, 4096u))
       ->capture_default_str();
-  sub->add_option("--step", args->step,
-                  "voxel refraction's march: papers (fixed step h / cos theta along the dominant axis) or dda "
-                  "(exact voxel traversal)")
+  sub->add_option(
+         "--step", args->step,
+         "voxel refraction's march: papers (fixed step h / cos theta along the dominant axis) or dda "
+         "(exact voxel traversal)")
       ->capture_default_str();
   sub->add_option("--normals", args->normals,
                   "voxel refraction's boundary normals: voxel (the voxel's normal sum, the papers) or smooth "
                   "(3x3x3 neighbours weighted by distance)")
       ->capture_default_str();
-  sub->add_option("--angle-threshold", args->angle_threshold,
-                  "voxel-multi: degrees a boundary voxel's normal must turn from the last refraction normal to "
-                  "count as a new interface within one boundary run")
+  sub->add_option(
+         "--angle-threshold", args->angle_threshold,
+         "voxel-multi: degrees a boundary voxel's normal must turn from the last refraction normal to "
+         "count as a new interface within one boundary run")
       ->check(CLI::Range(0.0f, 180.0f))
       ->capture_default_str();
   sub->add_option("--frames", args->frames,
                   "render the frame this many times in this process and report the median (warm) frame time")
       ->check(CLI::Range(1u, 100000u))
       ->capture_default_str();
-  sub->add_flag("--compare-reference", args->compare_reference,
-                "measure against the Embree reference: refraction against the matched reference (image, exit "
-                "directions, event sequences), or without refraction the shadows at the same receivers; writes "
-                "OUT.error.png");
+  sub->add_flag(
+      "--compare-reference", args->compare_reference,
+      "measure against the Embree reference: refraction against the matched reference (image, exit "
+      "directions, event sequences), or without refraction the shadows at the same receivers; writes "
+      "OUT.error.png");
   sub->add_option("--device", args->device, "OpenCL device P:D or name substring (also $VOXR_DEVICE)");
   sub->add_option("--report", args->report, "write a JSON report (times, light grid, errors)");
   sub->add_flag("--profile", args->profile, "print a per-kernel time table");
