@@ -278,7 +278,11 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
     if (p.two_surface && (events >= 2u || mat != m0)) continue; /* voxel-two: only its object's back */
     const float3 n_voxel = gv_normal(&g, rank);
     if (dot(n_voxel, n_voxel) < 1e-12f) continue; /* the writers' normals cancel: glass thinner than a voxel */
-    if (in_run && run_material == mat && dot(n_voxel, prev_normal) > p.cos_threshold) continue; /* same run */
+    /* The surface refracted at last: its boundary run, or a voxel of it within two voxels of the event (a
+     * conservative surface is not a 6-connected run along every ray), unless the normal turns by more than
+     * the angle threshold (PG 2011): then it is the next surface, e.g. the far side of a thin part. */
+    const int near_last = in_run || length(here - last) < 2.0f;
+    if (near_last && run_material == mat && dot(n_voxel, prev_normal) > p.cos_threshold) continue;
     const float3 n = p.smooth_normals ? boundary_normal(&g, m.i, m.j, m.k, rank, mat, here, 1u) : n_voxel;
     absorb_segment(&throughput, materials, media, depth, last, here, p.voxel_size);
     last = here;

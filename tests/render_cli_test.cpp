@@ -1,6 +1,8 @@
 // voxr render end to end: the image and the report with every shadow method, the comparison with the
 // reference, and one-line errors for bad flags and outputs.
 #include <gtest/gtest.h>
+
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -42,12 +44,41 @@ TEST(RenderCli, CompareReferenceReportsErrorsAndWritesTheErrorImage) {
                                      image.string() + " --report " + report.string());
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(test::slurp(report));
-  const auto& c = j["compare_reference"];
+  // The built-in scene has glass: the refraction is measured against the matched reference, the shadows at
+  // the receivers the paths end on.
+  const auto& c = j["compare_reference"]["shadows"];
   EXPECT_GT(c["receivers"].get<uint64_t>(), 1000u);
   EXPECT_GE(c["transmittance_rmse"].get<double>(), 0.0);
   EXPECT_LT(c["transmittance_rmse"].get<double>(), 0.1);
-  EXPECT_TRUE(fs::exists(scratch() / "compare.error.png"));
+  EXPECT_TRUE(fs::exists(scratch() / "compare.shadow-error.png"));
   EXPECT_NE(r.out.find("vs exact"), std::string::npos) << r.out;
+  const auto& f = j["compare_reference"]["refraction"];
+  EXPECT_GT(f["refracted_pixels"].get<uint64_t>(), 100u);
+  EXPECT_EQ(f["nonfinite_pixels"].get<uint64_t>(), 0u);
+  EXPECT_GT(f["psnr"].get<double>(), 15.0);
+  EXPECT_TRUE(fs::exists(scratch() / "compare.error.png"));
+  EXPECT_NE(r.out.find("vs matched"), std::string::npos) << r.out;
+}
+
+TEST(RenderCli, EveryRefractionMethodRendersTheGlassSphere) {
+  const std::string scene = std::string(VOXR_SOURCE_DIR) + "/data/scenes/glass-sphere.json";
+  for (const std::string method :
+       {"voxel-multi", "voxel-two", "image-space", "reference", "reference-full", "none"}) {
+    const fs::path image = scratch() / ("refract-" + method + ".exr");
+    const fs::path report = scratch() / ("refract-" + method + ".json");
+    const test::CliResult r = run_voxr("render " + scene +
+                                       " --size 64x48 --shadow-res 64 --res 64 --step papers "
+                                       "--normals voxel --refraction " +
+                                       method + " -o " + image.string() + " --report " + report.string());
+    ASSERT_EQ(r.code, 0) << method << ": " << r.err;
+    const nlohmann::json j = nlohmann::json::parse(test::slurp(report));
+    EXPECT_EQ(j["refraction"], method);
+    EXPECT_EQ(j["environment"], "checker");
+    EXPECT_EQ(j.contains("refraction_grid"), method == "voxel-multi" || method == "voxel-two") << method;
+    const ImageRgba img = read_image(image.string());
+    for (const glm::vec4& p : img.pixels)
+      ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+  }
 }
 
 TEST(RenderCli, BadFlagsAndOutputsAreOneLineErrors) {
@@ -61,7 +92,14 @@ TEST(RenderCli, BadFlagsAndOutputsAreOneLineErrors) {
            {"render --shadows uniform --mode conservative -o " + out.string(),
             "--mode applies to --shadows voxel"},
            {"render --size 64 -o " + out.string(), "--size '64'"},
-           {"render --shadows reference --compare-reference -o " + out.string(), "is the reference itself"},
+           {"render --shadows reference --refraction none --compare-reference -o " + out.string(),
+            "there is nothing to measure"},
+           {"render --refraction reference --compare-reference -o " + out.string(),
+            "there is nothing to measure"},
+           {"render --refraction bent -o " + out.string(), "unknown refraction method 'bent'"},
+           {"render --step big -o " + out.string(), "unknown step rule 'big'"},
+           {"render --normals wavy -o " + out.string(), "unknown normal kind 'wavy'"},
+           {"render --res 1 -o " + out.string(), "--res"},
            {"render --shadow-res 2 -o " + out.string(), "--shadow-res"},
            {"render " + (scratch() / "missing.json").string() + " -o " + out.string(),
             "missing.json: no such file"},

@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/generators.h"
 #include "core/scene.h"
 #include "refraction_ball.h"
 #include "render/environment_map.h"
@@ -92,6 +95,35 @@ TEST(VoxelRefraction, PixelsWithoutGlassAreAsWithoutRefraction) {
   EXPECT_GT(glass, 100u);
   // The slab behind the ball fills the view through it: most refracted paths end on it.
   EXPECT_GT(box_ends, glass * 3 / 4);
+}
+
+TEST(VoxelRefraction, TiltedSlabShiftsTheRayByTheTextbookOffset) {
+  // A glass slab 0.5 thick (a make_box: its faces must shade flat for the exact front refraction), turned 40
+  // degrees about y: the centre ray leaves parallel to itself, shifted sideways by t sin(theta - theta_t) /
+  // cos(theta_t).
+  const float t = 0.5f, theta = glm::radians(40.0f);
+  TriangleSoup soup;
+  const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), theta, glm::vec3(0.0f, 1.0f, 0.0f));
+  soup.append(make_box(glm::vec3(-1.0f, -1.0f, -t / 2), glm::vec3(1.0f, 1.0f, t / 2)), turn, kGlass);
+  FrameRenderer renderer(test::runtime());
+  renderer.set_scene(soup, materials());
+  const float theta_t = std::asin(std::sin(theta) / kIor);
+  const float expected = t * std::sin(theta - theta_t) / std::cos(theta_t);
+  for (RefractionMethod method : {RefractionMethod::kVoxelMulti, RefractionMethod::kVoxelTwo})
+    for (StepRule step : {StepRule::kDda, StepRule::kPapers}) {
+      SCOPED_TRACE(std::string(refraction_method_info(method).name) + " " + step_rule_info(step).name);
+      const RenderOptions o = options(method, step, NormalKind::kVoxel);
+      renderer.prepare(o);
+      const RenderedFrame frame = renderer.render(light(), camera(), o);
+      const RefractionPath& path = frame.paths[centre_pixel()];
+      ASSERT_EQ(path.events & VOXR_PATH_EVENTS_MASK, 2u);
+      const glm::vec3 v = camera().forward;
+      EXPECT_LT(glm::degrees(std::acos(std::min(1.0f, glm::dot(vec(path.exit_direction), v)))), 0.5f);
+      const glm::vec3 q = vec(path.exit_position) - camera().eye;
+      const float offset = glm::length(q - glm::dot(q, v) * v);
+      const float voxel = 2.0f * std::cos(theta) + t * std::sin(theta);          // the slab's x extent...
+      EXPECT_NEAR(offset, expected, voxel / 256.0f) << "textbook " << expected;  // ...over 256 voxels
+    }
 }
 
 Scene scene_file(const std::string& name) {

@@ -117,11 +117,17 @@ int run_render(const RenderArgs& args) {
   }
   const RefractionMethod asked_refraction = options.refraction.method;
   const bool host_refraction = is_reference_refraction(asked_refraction);
-  const bool reference_only = options.shadows == ShadowMethod::kReference || host_refraction;
-  if (reference_only && args.compare_reference)
+  // The references render everything on the host; --shadows reference alone runs the device frame with the
+  // exact transmittance traced for its samples.
+  const bool reference_only = host_refraction;
+  const bool exact_shadows =
+      options.shadows == ShadowMethod::kReference || options.shadows == ShadowMethod::kNone;
+  if (args.compare_reference &&
+      (host_refraction || (exact_shadows && asked_refraction == RefractionMethod::kNone)))
     fail(
-        "--compare-reference measures a method against the reference; --shadows reference and --refraction "
-        "reference|reference-full are the reference itself");
+        "--compare-reference measures a shadow or refraction method against the reference; with --shadows {} "
+        "and --refraction {} there is nothing to measure",
+        args.shadows, args.refraction);
   const bool tty = isatty(fileno(stderr)) && !args.quiet;
 
   std::future<PreparedRuntime<FrameRenderer>> background;
@@ -174,25 +180,14 @@ int run_render(const RenderArgs& args) {
     reference_scene();
     for (uint32_t f = 0; f < args.frames; ++f) {
       const auto frame_start = Clock::now();
-      if (host_refraction) {
-        const ReferenceModel model = asked_refraction == RefractionMethod::kReference
-                                         ? ReferenceModel::kMatched
-                                         : ReferenceModel::kFull;
-        RefractionReference r =
-            render_refraction_reference(*reference, render_mats, light, environment, camera, model);
-        image = std::move(r.image);
-        report["ms"] = {
-            {"bvh_build", r.build_ms}, {"trace", r.trace_ms}, {"shadow", r.shadow_ms}, {"shade", r.shade_ms}};
-        report["shadows"] = "reference";
-      } else {
-        ReferenceRender r = render_reference(*reference, render_mats, light, camera);
-        image = std::move(r.image);
-        report["ms"] = {{"bvh_build", r.build_ms},
-                        {"primary", r.primary_ms},
-                        {"shadow", r.shadow_ms},
-                        {"shade", r.shade_ms}};
-        report["refraction"] = "none";
-      }
+      const ReferenceModel model =
+          asked_refraction == RefractionMethod::kReference ? ReferenceModel::kMatched : ReferenceModel::kFull;
+      RefractionReference r =
+          render_refraction_reference(*reference, render_mats, light, environment, camera, model);
+      image = std::move(r.image);
+      report["ms"] = {
+          {"bvh_build", r.build_ms}, {"trace", r.trace_ms}, {"shadow", r.shadow_ms}, {"shade", r.shade_ms}};
+      report["shadows"] = "reference";
       frame_ms.push_back(ms_since(frame_start) + (f == 0 ? reference->build_ms() : 0.0));
     }
     report["device"] = "host (Embree)";
@@ -211,8 +206,13 @@ int run_render(const RenderArgs& args) {
           inward_distances(*reference_scene(), soup, materials, vertex_normals(soup)));
       precompute_ms = ms_since(start);
     }
+    HostTransmittance exact;
+    if (options.shadows == ShadowMethod::kReference)
+      exact = [&](std::span<const SurfaceSample> s) {
+        return reference_transmittance(*reference_scene(), light, s);
+      };
     for (uint32_t f = 0; f < args.frames; ++f) {
-      RenderedFrame frame = prepared.engine->render(light, camera, options, {}, &stats);
+      RenderedFrame frame = prepared.engine->render(light, camera, options, exact, &stats);
       frame_ms.push_back(stats.frame_ms);
       image = std::move(frame.image);
       samples = std::move(frame.samples);
@@ -251,6 +251,7 @@ int run_render(const RenderArgs& args) {
   report["ms"]["frame_median"] = median(frame_ms);
   report["frames"] = args.frames;
 
+  nlohmann::json compare = nlohmann::json::object();
   if (args.compare_reference && refracting) {
     if (tty) fmt::print(stderr, "\r{:<60}\rtracing the matched reference...", "");
     const auto ref_start = Clock::now();
@@ -259,18 +260,19 @@ int run_render(const RenderArgs& args) {
     const RefractionError e = refraction_error(image, paths, r.image, r.paths);
     const std::filesystem::path error_path = beside(args.output, "error");
     write_image(error_image(image, r.image), error_path.string());
-    report["compare_reference"] = {{"reference", "matched"},
-                                   {"rmse", e.rmse},
-                                   {"psnr", finite_or_inf(e.psnr)},
-                                   {"angle_mean_deg", e.angle_mean_deg},
-                                   {"angle_p95_deg", e.angle_p95_deg},
-                                   {"angle_pixels", e.angle_pixels},
-                                   {"refracted_pixels", e.refracted_pixels},
-                                   {"event_mismatch_share", e.event_mismatch_share},
-                                   {"nonfinite_pixels", e.nonfinite_pixels},
-                                   {"error_image", error_path.string()},
-                                   {"reference_ms", ms_since(ref_start)}};
-  } else if (args.compare_reference) {
+    compare["refraction"] = {{"reference", "matched"},
+                             {"rmse", e.rmse},
+                             {"psnr", finite_or_inf(e.psnr)},
+                             {"angle_mean_deg", e.angle_mean_deg},
+                             {"angle_p95_deg", e.angle_p95_deg},
+                             {"angle_pixels", e.angle_pixels},
+                             {"refracted_pixels", e.refracted_pixels},
+                             {"event_mismatch_share", e.event_mismatch_share},
+                             {"nonfinite_pixels", e.nonfinite_pixels},
+                             {"error_image", error_path.string()},
+                             {"reference_ms", ms_since(ref_start)}};
+  }
+  if (args.compare_reference && !exact_shadows) {
     if (tty) fmt::print(stderr, "\r{:<60}\rcomparing with the reference...", "");
     const auto ref_start = Clock::now();
     const std::vector<glm::vec3> exact = reference_transmittance(*reference_scene(), light, samples);
@@ -278,16 +280,17 @@ int run_render(const RenderArgs& args) {
     const TransmittanceError e = transmittance_error(transmittance, exact, mask, 0.05);
     const ImageRgba exact_image =
         shade_paths(samples, exact, paths, render_mats, light, environment, width, height);
-    const std::filesystem::path error_path = beside(args.output, "error");
+    const std::filesystem::path error_path = beside(args.output, refracting ? "shadow-error" : "error");
     write_image(error_image(transmittance, exact, width, height, mask, 1.0), error_path.string());
-    report["compare_reference"] = {{"transmittance_rmse", e.rmse},
-                                   {"transmittance_max", e.max_abs},
-                                   {"share_over_0.05", e.share_over_threshold},
-                                   {"receivers", e.receivers},
-                                   {"psnr", finite_or_inf(psnr(image, exact_image))},
-                                   {"error_image", error_path.string()},
-                                   {"reference_ms", ms_since(ref_start)}};
+    compare["shadows"] = {{"transmittance_rmse", e.rmse},
+                          {"transmittance_max", e.max_abs},
+                          {"share_over_0.05", e.share_over_threshold},
+                          {"receivers", e.receivers},
+                          {"psnr", finite_or_inf(psnr(image, exact_image))},
+                          {"error_image", error_path.string()},
+                          {"reference_ms", ms_since(ref_start)}};
   }
+  if (!compare.empty()) report["compare_reference"] = compare;
   write_image(image, args.output);
   report["ms"]["process"] = ms_since(process_start);
   if (!args.report.empty()) write_file_atomically(args.report, report.dump(2) + "\n");
@@ -320,23 +323,28 @@ int run_render(const RenderArgs& args) {
                frame_ms.size() == 1 ? "" : "s", *std::min_element(frame_ms.begin(), frame_ms.end()),
                *std::max_element(frame_ms.begin(), frame_ms.end()));
     if (!stages.empty()) fmt::print("stages ms  {} (host {:.2f})\n", stages, stats.host_ms);
-    if (report.contains("compare_reference")) {
-      const auto& c = report["compare_reference"];
-      const std::string p = c["psnr"].is_number() ? fmt::format("{:.2f}", c["psnr"].get<double>()) : "inf";
-      if (c.contains("rmse")) {
-        fmt::print(
-            "vs matched image RMSE {:.4f}, PSNR {} dB; exit direction error mean {:.2f} deg, 95th {:.2f} deg "
-            "({} pixels); event sequence differs on {:.2f}% of {} refracted pixels; {} non-finite pixels\n",
-            c["rmse"].get<double>(), p, c["angle_mean_deg"].get<double>(), c["angle_p95_deg"].get<double>(),
-            c["angle_pixels"].get<uint64_t>(), 100.0 * c["event_mismatch_share"].get<double>(),
-            c["refracted_pixels"].get<uint64_t>(), c["nonfinite_pixels"].get<uint64_t>());
-      } else {
-        fmt::print(
-            "vs exact   transmittance RMSE {:.4f}, max {:.3f}, {:.2f}% of {} receivers off by > 0.05, "
-            "PSNR {} dB\n",
-            c["transmittance_rmse"].get<double>(), c["transmittance_max"].get<double>(),
-            100.0 * c["share_over_0.05"].get<double>(), c["receivers"].get<uint64_t>(), p);
-      }
+    const auto psnr_text = [](const nlohmann::json& v) {
+      return v.is_number() ? fmt::format("{:.2f}", v.get<double>()) : std::string("inf");
+    };
+    if (compare.contains("refraction")) {
+      const auto& c = compare["refraction"];
+      fmt::print(
+          "vs matched image RMSE {:.4f}, PSNR {} dB; exit direction error mean {:.2f} deg, 95th {:.2f} deg "
+          "({} "
+          "pixels); event sequence differs on {:.2f}% of {} refracted pixels; {} non-finite pixels\n",
+          c["rmse"].get<double>(), psnr_text(c["psnr"]), c["angle_mean_deg"].get<double>(),
+          c["angle_p95_deg"].get<double>(), c["angle_pixels"].get<uint64_t>(),
+          100.0 * c["event_mismatch_share"].get<double>(), c["refracted_pixels"].get<uint64_t>(),
+          c["nonfinite_pixels"].get<uint64_t>());
+      fmt::print("wrote      {}\n", c["error_image"].get<std::string>());
+    }
+    if (compare.contains("shadows")) {
+      const auto& c = compare["shadows"];
+      fmt::print(
+          "vs exact   transmittance RMSE {:.4f}, max {:.3f}, {:.2f}% of {} receivers off by > 0.05, PSNR {} "
+          "dB\n",
+          c["transmittance_rmse"].get<double>(), c["transmittance_max"].get<double>(),
+          100.0 * c["share_over_0.05"].get<double>(), c["receivers"].get<uint64_t>(), psnr_text(c["psnr"]));
       fmt::print("wrote      {}\n", c["error_image"].get<std::string>());
     }
     fmt::print("process ms {:.1f}\n", report["ms"]["process"].get<double>());

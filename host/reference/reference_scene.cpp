@@ -331,10 +331,14 @@ SurfaceSample ReferenceScene::intersect(const glm::vec3& origin, const glm::vec3
   const glm::uvec4& t = m.triangles[triangle];
   const glm::vec3 position = origin + best_t * d;
   glm::vec3 geometric = m.face_normal(triangle);
-  glm::vec3 shading = (1.0f - u - v) * m.normals[t.x] + u * m.normals[t.y] + v * m.normals[t.z];
+  // The crease rule per corner (voxr_layout.h VOXR_CREASE_COS), as the rasterizer's resolve applies it.
+  const auto corner = [&](uint32_t vertex) {
+    const glm::vec3 n = m.normals[vertex];
+    return glm::dot(n, geometric) >= VOXR_CREASE_COS ? n : geometric;
+  };
+  glm::vec3 shading = (1.0f - u - v) * corner(t.x) + u * corner(t.y) + v * corner(t.z);
   const float shading_len = glm::length(shading);
   shading = shading_len > 0.0f ? shading / shading_len : glm::vec3(0.0f);
-  // The crease rule (voxr_layout.h VOXR_CREASE_COS), as the rasterizer's resolve applies it.
   if (!(glm::dot(shading, geometric) >= VOXR_CREASE_COS)) shading = geometric;
   if (glm::dot(geometric, d) > 0.0f) geometric = -geometric;
   if (glm::dot(shading, d) > 0.0f) shading = -shading;
