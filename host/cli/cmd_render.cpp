@@ -207,7 +207,8 @@ int run_render(const RenderArgs& args) {
     if (options.refraction.method == RefractionMethod::kImageSpace) {
       // Wyman's d_N, ray cast once per scene as the paper precomputes it offline.
       const auto start = Clock::now();
-      prepared.engine->set_inward_distances(inward_distances(*reference_scene(), soup, vertex_normals(soup)));
+      prepared.engine->set_inward_distances(
+          inward_distances(*reference_scene(), soup, materials, vertex_normals(soup)));
       precompute_ms = ms_since(start);
     }
     for (uint32_t f = 0; f < args.frames; ++f) {
