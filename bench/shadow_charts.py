@@ -15,8 +15,9 @@ Writes into OUT_DIR (created if missing):
                (no other run is both faster and more accurate) as a step line.
   STEM.md      every row, sorted by scene, group columns and resolution, Pareto-optimal rows marked, where
                STEM is the CSV's file name without .csv.
-The refraction benchmark reuses it with e.g. --error-column rmse --group-columns method, or --error-column psnr
---higher-is-better (the front then keeps the higher scores).
+The refraction benchmark (voxr bench refraction) runs it once per error column (rmse, angle_mean_deg) into
+OUT-charts/COLUMN/ with --group-columns method,step,normals --label-column res; cells may be empty (image-space
+and the reference have no step, normals or res). --error-column psnr --higher-is-better keeps the higher scores.
 Needs python3 and matplotlib (Debian: python3-matplotlib).
 """
 import argparse

@@ -18,6 +18,15 @@ foliage,slice,centre,128,6.0,5.5,6.5,nan,nan,nan,nan
 foliage,slice,centre,256,12.0,11.0,13.0,0.003,0.01,0.00,50
 """
 
+# As voxr bench refraction writes it: empty step, normals and res cells for the methods without a grid.
+REFRACTION_CSV = """scene,triangles,method,step,normals,res,frame_ms,frame_ms_min,frame_ms_max,rmse,psnr,angle_mean_deg
+ball,960,reference-matched,,,,80.0,80.0,80.0,0.000000,inf,0.0000
+ball,960,voxel-multi,dda,smooth,64,3.0,2.9,3.2,0.050000,26.0,4.0000
+ball,960,voxel-multi,dda,smooth,256,9.0,8.8,9.5,0.020000,34.0,1.5000
+ball,960,voxel-multi,papers,voxel,256,8.0,7.9,8.2,0.060000,24.4,nan
+ball,960,image-space,,,,2.0,1.9,2.1,0.040000,28.0,6.0000
+"""
+
 
 def run(time, error):
     return {"_time": time, "_error": error}
@@ -48,6 +57,30 @@ class ShadowCharts(unittest.TestCase):
                               ["tree", "slice", "conservative", "128"], ["tree", "slice", "conservative", "256"],
                               ["tree", "slicemap", "uniform", "64"], ["tree", "slicemap", "uniform", "256"]])
             self.assertEqual([r.startswith("| **P**") for r in rows], [False, True, True, True, True, False])
+
+    def test_refraction_columns(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "refraction.csv")
+            with open(path, "w") as f:
+                f.write(REFRACTION_CSV)
+            for error in ("rmse", "angle_mean_deg"):
+                out = os.path.join(d, "charts", error)
+                shadow_charts.main([path, out, "--error-column", error, "--group-columns", "method,step,normals",
+                                    "--label-column", "res"])
+                self.assertEqual(sorted(os.listdir(out)), ["ball.png", "refraction.md"])
+                table = open(os.path.join(out, "refraction.md")).read().splitlines()
+                rows = [line for line in table if line.startswith("| **P** |") or line.startswith("|  |")]
+                # Sorted by method, step, normals, res; empty cells stay empty.
+                self.assertEqual([r.split(" | ")[3:7] for r in rows],
+                                 [["image-space", "", "", ""], ["reference-matched", "", "", ""],
+                                  ["voxel-multi", "dda", "smooth", "64"], ["voxel-multi", "dda", "smooth", "256"],
+                                  ["voxel-multi", "papers", "voxel", "256"]])
+                # rmse: image-space (2 ms) beats voxel 64 (3 ms, 0.05); the reference (error 0) is on the front.
+                # angle: the NaN is never on the front; image-space (2 ms, 6 deg), 64 (3 ms, 4 deg),
+                # 256 (9 ms, 1.5 deg) and the reference (0 deg).
+                expected = {"rmse": [True, True, False, True, False],
+                            "angle_mean_deg": [True, True, True, True, False]}[error]
+                self.assertEqual([r.startswith("| **P**") for r in rows], expected, error)
 
 
 if __name__ == "__main__":

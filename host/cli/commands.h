@@ -19,7 +19,9 @@ Command add_bench(CLI::App& app);
 Command add_render(CLI::App& app);
 // `voxr bench shadows`, a subcommand of `bench`.
 Command add_bench_shadows(CLI::App& bench);
-// voxr-render holds render and bench shadows (VOXR_CLI_RENDER); voxr forwards them to it (main.cpp) and
-// registers them only for --help (render_forward.cpp).
+// `voxr bench refraction`, a subcommand of `bench`.
+Command add_bench_refraction(CLI::App& bench);
+// voxr-render holds render, bench shadows and bench refraction (VOXR_CLI_RENDER); voxr forwards them to it
+// (main.cpp) and registers them only for --help (render_forward.cpp).
 
 }  // namespace voxr::cli
