@@ -96,7 +96,7 @@ def file_stem(text):
     return re.sub(r"[^A-Za-z0-9_.-]+", "_", text).strip("._") or "scene"
 
 
-def chart(scene, rows, front, args, path):
+def chart(scene, rows, front, args, path, references=()):
     groups = list(dict.fromkeys(r["_group"] for r in rows))
     shown = [r for r in rows if math.isfinite(r["_error"])]
     errors = [r["_error"] for r in shown]
@@ -121,6 +121,9 @@ def chart(scene, rows, front, args, path):
         for r in pts:
             ax.annotate(r[args.label_column], (r["_time"], r["_error"]), fontsize=7, xytext=(4, 3),
                         textcoords="offset points")
+    for r in references:  # the exact method's cost: a line, not a point at error 0 that beats everything
+        ax.axvline(r["_time"], linestyle="--", color="k", alpha=0.5, lw=1,
+                   label=f"{r['_group']} (the reference): {r['_time']:.0f}")
     on_front = [r for r in front if math.isfinite(r["_error"])]
     if on_front:
         ax.step([r["_time"] for r in on_front], [r["_error"] for r in on_front], where="post", color="k",
@@ -184,6 +187,9 @@ def main(argv=None):
                         help="comma-separated columns naming a series (default: method,mode)")
     parser.add_argument("--label-column", default="resolution", help="point labels (default: resolution)")
     parser.add_argument("--scene-column", default="scene", help="one chart per value (default: scene)")
+    parser.add_argument("--reference", default="",
+                        help="group (as --group-columns joins it) of the exact method's rows: drawn as a vertical "
+                             "line at its time, left out of the points and the Pareto front")
     parser.add_argument("--higher-is-better", action="store_true",
                         help="the error column is a score where higher is better (psnr, ssim)")
     args = parser.parse_args(argv)
@@ -197,13 +203,15 @@ def main(argv=None):
     used = set()
     for scene in scenes:
         scene_rows = [r for r in rows if r[args.scene_column] == scene]
+        references = [r for r in scene_rows if args.reference and r["_group"] == args.reference]
+        scene_rows = [r for r in scene_rows if not (args.reference and r["_group"] == args.reference)]
         fronts[scene] = pareto(scene_rows, args.higher_is_better)
         stem = file_stem(scene)
         while stem in used:
             stem += "_"
         used.add(stem)
         path = os.path.join(args.out_dir, stem + ".png")
-        chart(scene, scene_rows, fronts[scene], args, path)
+        chart(scene, scene_rows, fronts[scene], args, path, references)
         written.append(path)
     md = os.path.join(args.out_dir, os.path.splitext(os.path.basename(args.csv))[0] + ".md")
     table(columns, rows, fronts, args, md)

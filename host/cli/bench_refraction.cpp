@@ -43,7 +43,8 @@ constexpr const char* kSystemPython = "/usr/bin/python3";
 
 // What the frame includes, said once in the Markdown.
 constexpr const char* kFrameIncludes =
-    "one whole frame: voxelize the scene with normals and inside (voxel methods) + rasterize the camera's "
+    "one whole frame: voxelize the scene with normals and materials (voxel methods; no inside channel: media "
+    "are told by parity) + rasterize the camera's "
     "visibility + refract + the shadow method's light structure and lookup + shade + read the image back";
 
 struct MethodCase {
@@ -54,7 +55,7 @@ struct MethodCase {
 
 const char* const kMethodHelp =
     "voxel-multi-STEP-NORMALS or voxel-two[-STEP-NORMALS] (STEP: dda or papers, NORMALS: smooth or voxel; "
-    "voxel-two alone is dda-smooth), image-space";
+    "voxel-two alone is the default papers-smooth), image-space";
 
 // Throws voxr::Error naming the method when it is none of kMethodHelp's forms.
 MethodCase parse_method_case(const std::string& label) {
@@ -75,26 +76,18 @@ MethodCase parse_method_case(const std::string& label) {
   } else {
     unknown();
   }
-  m.options.step = StepRule::kDda;
-  m.options.normals = NormalKind::kSmooth;
+  // voxel-two alone: the defaults (RefractionOptions), as `voxr render` uses them.
   if (rest.empty() && m.options.method == RefractionMethod::kVoxelTwo) return m;
   // "-STEP-NORMALS"
   if (rest.size() < 2 || rest[0] != '-') unknown();
   const size_t dash = rest.find('-', 1);
   if (dash == std::string::npos) unknown();
-  const std::string step = rest.substr(1, dash - 1), normals = rest.substr(dash + 1);
-  if (step == "dda")
-    m.options.step = StepRule::kDda;
-  else if (step == "papers")
-    m.options.step = StepRule::kPapers;
-  else
+  try {
+    m.options.step = parse_step_rule(rest.substr(1, dash - 1));
+    m.options.normals = parse_normal_kind(rest.substr(dash + 1));
+  } catch (const Error&) {
     unknown();
-  if (normals == "smooth")
-    m.options.normals = NormalKind::kSmooth;
-  else if (normals == "voxel")
-    m.options.normals = NormalKind::kVoxel;
-  else
-    unknown();
+  }
   return m;
 }
 
@@ -411,7 +404,7 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
       const int status =
           run_program({kSystemPython, script.string(), args.out + ".csv", args.out + "-charts/" + error,
                        "--error-column", error, "--time-column", "frame_ms", "--group-columns",
-                       "method,step,normals", "--label-column", "res"});
+                       "method,step,normals", "--label-column", "res", "--reference", "reference-matched"});
       if (status != 0)
         fmt::print(stderr, "voxr: warning: the {} charts were not drawn ({} failed)\n", error,
                    script.string());

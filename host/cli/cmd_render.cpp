@@ -59,7 +59,7 @@ struct RenderArgs {
   float normal_offset = kDefaultNormalOffset;
   std::string refraction = "voxel-multi";
   uint32_t res = 256;
-  std::string step = "dda";
+  std::string step = "papers";
   std::string normals = "smooth";
   float angle_threshold = 60.0f;
   uint32_t frames = 1;

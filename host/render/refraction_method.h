@@ -73,7 +73,10 @@ inline bool is_reference_refraction(RefractionMethod m) {
 struct RefractionOptions {
   RefractionMethod method = RefractionMethod::kNone;
   uint32_t resolution = 256;  // voxel methods: voxels along the scene's longest side
-  StepRule step = StepRule::kDda;
+  // The papers' step and smooth normals: the most accurate voxel-multi on average over the refraction scenes
+  // and faster than the DDA (bench/results/refraction-pocl-2core.md: the DDA visits every voxel a ray clips
+  // of a surface's conservative shell and refracts early or twice).
+  StepRule step = StepRule::kPapers;
   NormalKind normals = NormalKind::kSmooth;
   // A boundary voxel within the run just refracted at is a new interface only when its normal turns more
   // than this from the last refraction normal (PG 2011's angle threshold), in degrees.
