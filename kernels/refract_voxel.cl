@@ -86,7 +86,8 @@ inline int march_begin(March* m, const GridView* g, float3 origin, float3 dir, u
 /* march_begin for a new direction at a point of voxel (i, j, k), which stays the current voxel: after an
  * event the march goes on from the boundary voxel it happened in (floor() of a point on a voxel face could
  * pick the empty neighbour, leave the boundary run and meet the same surface again). */
-inline void march_restart(March* m, const GridView* g, float3 origin, float3 dir, uint dda, int i, int j, int k) {
+inline void march_restart(March* m, const GridView* g, float3 origin, float3 dir, uint dda, int i, int j,
+                          int k) {
   march_begin(m, g, origin, dir, dda);
   m->i = i;
   m->j = j;
@@ -135,8 +136,10 @@ inline float3 march_point(const March* m) {
 
 /* The empty-space grid: the bit of brick (bi, bj, bk) is set when any voxel of it is occupied. One work item
  * per 32-bit occupancy word; each set bit is mapped on its own (rows may end mid-word). */
-__kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void brick_occupancy(
-    VOXR_GRID_VIEW_PARAMS, VoxelRefractParams p, ulong words, __global uint* bricks) {
+__kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void brick_occupancy(VOXR_GRID_VIEW_PARAMS,
+                                                                                      VoxelRefractParams p,
+                                                                                      ulong words,
+                                                                                      __global uint* bricks) {
   const ulong w = get_global_id(0);
   if (w >= words) return;
   const GridView g = VOXR_GRID_VIEW();
@@ -148,15 +151,16 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void brick_occu
     const ulong row = v / g.dims_x;
     const uint i = (uint)(v - row * g.dims_x), j = (uint)(row % g.dims_y), k = (uint)(row / g.dims_y);
     if (k >= g.dims_z) continue;
-    const ulong brick = ((ulong)(k / VOXR_BRICK) * p.brick_dims[1] + j / VOXR_BRICK) * p.brick_dims[0] +
-                        i / VOXR_BRICK;
+    const ulong brick =
+        ((ulong)(k / VOXR_BRICK) * p.brick_dims[1] + j / VOXR_BRICK) * p.brick_dims[0] + i / VOXR_BRICK;
     atomic_or(&bricks[brick >> 5], 1u << (uint)(brick & 31));
   }
 }
 
 inline int brick_empty(const VoxelRefractParams* p, __global const uint* bricks, int i, int j, int k) {
-  const ulong brick = ((ulong)(k / VOXR_BRICK) * p->brick_dims[1] + (uint)(j / VOXR_BRICK)) * p->brick_dims[0] +
-                      (uint)(i / VOXR_BRICK);
+  const ulong brick =
+      ((ulong)(k / VOXR_BRICK) * p->brick_dims[1] + (uint)(j / VOXR_BRICK)) * p->brick_dims[0] +
+      (uint)(i / VOXR_BRICK);
   return ((bricks[brick >> 5] >> (uint)(brick & 31)) & 1u) == 0u;
 }
 
@@ -277,7 +281,8 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
     /* A dielectric boundary voxel. */
     if (p.two_surface && (events >= 2u || mat != m0)) continue; /* voxel-two: only its object's back */
     const float3 n_voxel = gv_normal(&g, rank);
-    if (dot(n_voxel, n_voxel) < 1e-12f) continue; /* the writers' normals cancel: glass thinner than a voxel */
+    if (dot(n_voxel, n_voxel) < 1e-12f)
+      continue; /* the writers' normals cancel: glass thinner than a voxel */
     /* The surface refracted at last: its boundary run, or a voxel of it within two voxels of the event (a
      * conservative surface is not a 6-connected run along every ray), unless the normal turns by more than
      * the angle threshold (PG 2011): then it is the next surface, e.g. the far side of a thin part. */

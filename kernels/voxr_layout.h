@@ -136,9 +136,9 @@ typedef struct RenderLight {
   float pad2;
 } RenderLight;
 
-/* The crease rule of shading normals (raster_resolve.cl and the reference alike): a vertex normal more than 45
- * degrees from the triangle's own normal smooths over a crease, so the triangle's normal stands in for it at
- * that corner before interpolating; a box's faces shade flat (its corner normals are 54.7 degrees off each
+/* The crease rule of shading normals (raster_resolve.cl and the reference alike): a vertex normal more than
+ * 45 degrees from the triangle's own normal smooths over a crease, so the triangle's normal stands in for it
+ * at that corner before interpolating; a box's faces shade flat (its corner normals are 54.7 degrees off each
  * face), a tessellated sphere's stay smooth. (Comparing only the interpolated normal let a box face's centre
  * shade 11-32 degrees off, and glass boxes refract as if curved.) */
 #define VOXR_CREASE_COS 0.70710678f

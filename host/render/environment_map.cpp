@@ -48,7 +48,7 @@ EnvironmentMap EnvironmentMap::checker(uint32_t width) {
       const float v = ((cx + cy) & 1) ? 1.0f : 0.35f;
       glm::vec3 c = hue((float(cx / 2) + 0.5f) / 16.0f, v);
       const float polar = (float(y) + 0.5f) / float(h);  // 0 up, 1 down
-      if (polar > 0.5f) c *= 0.6f;  // the ground half darker, as under a sky
+      if (polar > 0.5f) c *= 0.6f;                       // the ground half darker, as under a sky
       px[size_t(y) * w + x] = glm::vec4(c, 1.0f);
     }
   return from_pixels(w, h, std::move(px), "checker");

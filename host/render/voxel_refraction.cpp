@@ -87,8 +87,8 @@ void VoxelRefraction::trace(const CameraFrame& camera, const cl::Buffer& primary
   cl::Kernel kernel = cl_.kernel("refract_voxel.cl", "refract_voxel", channel_defines());
   const uint64_t pixels = uint64_t(camera.width) * camera.height;
   cl_.launch("refraction", kernel, pixels, kGroup, grid_.view_args(cl_), make_render_camera(camera),
-             primary_samples, materials, cl_uint(material_count), params(options), bricks_.buffer, end_samples,
-             paths);
+             primary_samples, materials, cl_uint(material_count), params(options), bricks_.buffer,
+             end_samples, paths);
 }
 
 }  // namespace voxr
