@@ -134,6 +134,23 @@ inline float3 march_point(const March* m) {
   return m->origin + m->t * m->dir;
 }
 
+/* The point where the current segment entered voxel (m->i, m->j, m->k), no later than `here` and no earlier
+ * than the segment's origin: the DDA's own t, the papers' step clipped back to the voxel's faces. */
+inline float3 voxel_entry(const March* m, float3 here) {
+  const float3 d = m->dir;
+  const float3 lo = (float3)((float)m->i, (float)m->j, (float)m->k);
+  float t = 0.0f;
+  if (d.x != 0.0f) t = fmax(t, ((d.x > 0.0f ? lo.x : lo.x + 1.0f) - m->origin.x) / d.x);
+  if (d.y != 0.0f) t = fmax(t, ((d.y > 0.0f ? lo.y : lo.y + 1.0f) - m->origin.y) / d.y);
+  if (d.z != 0.0f) t = fmax(t, ((d.z > 0.0f ? lo.z : lo.z + 1.0f) - m->origin.z) / d.z);
+  return m->origin + fmin(t, dot(here - m->origin, d)) * d;
+}
+
+/* Bit index of the brick holding voxel (i, j, k) (non-negative) in the empty-space grid. */
+inline ulong brick_index(const VoxelRefractParams* p, uint i, uint j, uint k) {
+  return ((ulong)(k / VOXR_BRICK) * p->brick_dims[1] + j / VOXR_BRICK) * p->brick_dims[0] + i / VOXR_BRICK;
+}
+
 /* The empty-space grid: the bit of brick (bi, bj, bk) is set when any voxel of it is occupied. One work item
  * per 32-bit occupancy word; each set bit is mapped on its own (rows may end mid-word). */
 __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void brick_occupancy(VOXR_GRID_VIEW_PARAMS,
@@ -151,16 +168,13 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void brick_occu
     const ulong row = v / g.dims_x;
     const uint i = (uint)(v - row * g.dims_x), j = (uint)(row % g.dims_y), k = (uint)(row / g.dims_y);
     if (k >= g.dims_z) continue;
-    const ulong brick =
-        ((ulong)(k / VOXR_BRICK) * p.brick_dims[1] + j / VOXR_BRICK) * p.brick_dims[0] + i / VOXR_BRICK;
+    const ulong brick = brick_index(&p, i, j, k);
     atomic_or(&bricks[brick >> 5], 1u << (uint)(brick & 31));
   }
 }
 
 inline int brick_empty(const VoxelRefractParams* p, __global const uint* bricks, int i, int j, int k) {
-  const ulong brick =
-      ((ulong)(k / VOXR_BRICK) * p->brick_dims[1] + (uint)(j / VOXR_BRICK)) * p->brick_dims[0] +
-      (uint)(i / VOXR_BRICK);
+  const ulong brick = brick_index(p, (uint)i, (uint)j, (uint)k);
   return ((bricks[brick >> 5] >> (uint)(brick & 31)) & 1u) == 0u;
 }
 
@@ -235,6 +249,13 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
   end.distance = 0.0f;
   end.barycentric[0] = end.barycentric[1] = 0.0f;
   end.pad[0] = end.pad[1] = 0.0f;
+  /* Voxel normals follow the mesh's winding, the front normal faces the eye: give the run test the voxels'
+   * orientation, or a mesh wound inwards would see its own front shell as the next surface. */
+  if (inside_grid) {
+    const ulong v0 = gv_linear(&g, m.i, m.j, m.k);
+    if (gv_occupied(&g, v0) && dot(gv_normal(&g, gv_rank(&g, v0)), prev_normal) < 0.0f)
+      prev_normal = -prev_normal;
+  }
   int examine_current = 0; /* after a skip the voxel begun in is examined before stepping on */
   for (uint steps = 0; inside_grid && steps < p.max_steps; ++steps) {
     if (!examine_current && !march_step(&m, &g, p.step_dda)) {
@@ -264,7 +285,8 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
       float3 n = boundary_normal(&g, m.i, m.j, m.k, rank, mat, here, p.smooth_normals);
       if (dot(n, n) < 1e-12f) n = -dir;
       if (dot(n, dir) > 0.0f) n = -n;
-      rp_store3(end.position, to_world(&p, here));
+      /* Where the ray entered the voxel (the papers' sample point may lie inside the opaque object). */
+      rp_store3(end.position, to_world(&p, voxel_entry(&m, here)));
       end.triangle = VOXR_VOXEL_HIT;
       rp_store3(end.normal, n);
       end.material = mat;
@@ -294,15 +316,24 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
     int inside = -1;
     for (uint d = 0; d < depth; ++d)
       if (media[d] == mat) inside = (int)d;
+    if (inside < 0 && depth == MAX_MEDIA) { /* nested deeper than the stack holds: say so, do not guess */
+      events |= VOXR_PATH_LOST;
+      ended = 1;
+      break;
+    }
     const float n1 = depth > 0 ? materials[media[depth - 1]].ior : 1.0f;
-    const float n2 = inside >= 0 ? (inside > 0 ? materials[media[inside - 1]].ior : 1.0f) : mm.ior;
+    /* Leaving the innermost medium reveals the one below (or air); leaving an outer one (overlapping solids)
+     * keeps the ray in the innermost: n2 = n1. The reference does the same (next_ior). */
+    const float n2 = inside < 0                   ? mm.ior
+                     : (uint)inside + 1u == depth ? (inside > 0 ? materials[media[inside - 1]].ior : 1.0f)
+                                                  : n1;
     float3 new_dir;
     if (rp_refract(dir, n, n1, n2, &new_dir, &cos_i)) {
       throughput *= 1.0f - voxr_schlick(cos_i, n1, n2);
       if (inside >= 0) {
         for (uint d = (uint)inside; d + 1 < depth; ++d) media[d] = media[d + 1];
         --depth;
-      } else if (depth < MAX_MEDIA) {
+      } else {
         media[depth++] = mat;
       }
     } else {

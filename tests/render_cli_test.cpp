@@ -97,6 +97,10 @@ TEST(RenderCli, BadFlagsAndOutputsAreOneLineErrors) {
            {"render --refraction reference --compare-reference -o " + out.string(),
             "there is nothing to measure"},
            {"render --refraction bent -o " + out.string(), "unknown refraction method 'bent'"},
+           {"render --refraction reference --shadows voxel -o " + out.string(), "does not apply"},
+           {"render " + std::string(VOXR_SOURCE_DIR) +
+                "/data/scenes/foliage.json --shadows none --compare-reference -o " + out.string(),
+            "foliage.json: --compare-reference has nothing to measure"},
            {"render --step big -o " + out.string(), "unknown step rule 'big'"},
            {"render --normals wavy -o " + out.string(), "unknown normal kind 'wavy'"},
            {"render --res 1 -o " + out.string(), "--res"},

@@ -49,7 +49,7 @@ namespace {
 struct RenderArgs {
   std::string input;  // empty: the built-in default scene
   std::string output = "render.png";
-  std::string shadows = "voxel";
+  std::string shadows;  // empty: voxel (the references trace exact shadows and take no other)
   uint32_t shadow_res = 256;
   std::string mode;  // empty: center
   std::string size;  // empty: the scene camera's
@@ -80,13 +80,15 @@ bool has_dielectric(const TriangleSoup& soup, const std::vector<Material>& mater
   return false;
 }
 
+// A number, or "inf" / "nan" as text (JSON has neither).
 nlohmann::json finite_or_inf(double v) {
+  if (std::isnan(v)) return "nan";
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json("inf");
 }
 
 RenderOptions render_options(const RenderArgs& args) {
   RenderOptions options;
-  options.shadows = parse_shadow_method(args.shadows);
+  options.shadows = parse_shadow_method(args.shadows.empty() ? "voxel" : args.shadows);
   if (!args.mode.empty() && options.shadows != ShadowMethod::kVoxel)
     fail("--mode applies to --shadows voxel only (the light voxelizer's rule)");
   options.mode = parse_raster_mode(args.mode.empty() ? "center" : args.mode);
@@ -120,6 +122,10 @@ int run_render(const RenderArgs& args) {
   // The references render everything on the host; --shadows reference alone runs the device frame with the
   // exact transmittance traced for its samples.
   const bool reference_only = host_refraction;
+  if (host_refraction && !args.shadows.empty() && options.shadows != ShadowMethod::kReference)
+    fail("--refraction {} traces exact shadows; --shadows {} does not apply (leave it out or say reference)",
+         args.refraction, args.shadows);
+  if (host_refraction) options.shadows = ShadowMethod::kReference;
   const bool exact_shadows =
       options.shadows == ShadowMethod::kReference || options.shadows == ShadowMethod::kNone;
   if (args.compare_reference &&
@@ -127,7 +133,7 @@ int run_render(const RenderArgs& args) {
     fail(
         "--compare-reference measures a shadow or refraction method against the reference; with --shadows {} "
         "and --refraction {} there is nothing to measure",
-        args.shadows, args.refraction);
+        shadow_method_info(options.shadows).name, args.refraction);
   const bool tty = isatty(fileno(stderr)) && !args.quiet;
 
   std::future<PreparedRuntime<FrameRenderer>> background;
@@ -146,6 +152,11 @@ int run_render(const RenderArgs& args) {
   if (!has_dielectric(soup, materials) && !host_refraction)
     options.refraction.method = RefractionMethod::kNone;
   const bool refracting = options.refraction.method != RefractionMethod::kNone;
+  if (args.compare_reference && !refracting && exact_shadows)
+    fail(
+        "{}: --compare-reference has nothing to measure: the scene has no dielectric and --shadows {} is "
+        "exact",
+        scene.source, shadow_method_info(options.shadows).name);
   const Bounds bounds = soup.bounds();
   const uint32_t width = size.x ? size.x : scene.camera.width, height = size.y ? size.y : scene.camera.height;
   const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, bounds, width, height);
@@ -156,6 +167,7 @@ int run_render(const RenderArgs& args) {
   nlohmann::json report = {{"input", args.input.empty() ? "default scene" : args.input},
                            {"shadows", shadow_method_info(options.shadows).name},
                            {"refraction", refraction_method_info(options.refraction.method).name},
+                           {"refraction_asked", refraction_method_info(asked_refraction).name},
                            {"environment", environment.source()},
                            {"triangles", soup.triangle_count()},
                            {"size", {width, height}}};
@@ -187,7 +199,6 @@ int run_render(const RenderArgs& args) {
       image = std::move(r.image);
       report["ms"] = {
           {"bvh_build", r.build_ms}, {"trace", r.trace_ms}, {"shadow", r.shadow_ms}, {"shade", r.shade_ms}};
-      report["shadows"] = "reference";
       frame_ms.push_back(ms_since(frame_start) + (f == 0 ? reference->build_ms() : 0.0));
     }
     report["device"] = "host (Embree)";
@@ -252,19 +263,29 @@ int run_render(const RenderArgs& args) {
   report["frames"] = args.frames;
 
   nlohmann::json compare = nlohmann::json::object();
+  // The exact transmittance at this frame's path ends: the shadows are measured with it, and the refraction
+  // is measured on this frame's paths shaded with it, so that its error is refraction's alone.
+  std::vector<glm::vec3> exact;
+  ImageRgba exact_shadow_image;
+  if (args.compare_reference) {
+    if (tty) fmt::print(stderr, "\r{:<60}\rtracing the exact shadows...", "");
+    exact = reference_transmittance(*reference_scene(), light, samples);
+    exact_shadow_image = shade_paths(samples, exact, paths, render_mats, light, environment, width, height);
+  }
   if (args.compare_reference && refracting) {
     if (tty) fmt::print(stderr, "\r{:<60}\rtracing the matched reference...", "");
     const auto ref_start = Clock::now();
     const RefractionReference r = render_refraction_reference(*reference_scene(), render_mats, light,
                                                               environment, camera, ReferenceModel::kMatched);
-    const RefractionError e = refraction_error(image, paths, r.image, r.paths);
+    const RefractionError e = refraction_error(exact_shadow_image, paths, r.image, r.paths);
     const std::filesystem::path error_path = beside(args.output, "error");
-    write_image(error_image(image, r.image), error_path.string());
+    write_image(error_image(exact_shadow_image, r.image), error_path.string());
     compare["refraction"] = {{"reference", "matched"},
                              {"rmse", e.rmse},
                              {"psnr", finite_or_inf(e.psnr)},
-                             {"angle_mean_deg", e.angle_mean_deg},
-                             {"angle_p95_deg", e.angle_p95_deg},
+                             {"shadows", "exact (the frame's paths, shaded with the exact transmittance)"},
+                             {"angle_mean_deg", finite_or_inf(e.angle_mean_deg)},
+                             {"angle_p95_deg", finite_or_inf(e.angle_p95_deg)},
                              {"angle_pixels", e.angle_pixels},
                              {"refracted_pixels", e.refracted_pixels},
                              {"event_mismatch_share", e.event_mismatch_share},
@@ -275,18 +296,15 @@ int run_render(const RenderArgs& args) {
   if (args.compare_reference && !exact_shadows) {
     if (tty) fmt::print(stderr, "\r{:<60}\rcomparing with the reference...", "");
     const auto ref_start = Clock::now();
-    const std::vector<glm::vec3> exact = reference_transmittance(*reference_scene(), light, samples);
     const std::vector<uint8_t> mask = shadow_receivers(samples, render_mats, light);
     const TransmittanceError e = transmittance_error(transmittance, exact, mask, 0.05);
-    const ImageRgba exact_image =
-        shade_paths(samples, exact, paths, render_mats, light, environment, width, height);
     const std::filesystem::path error_path = beside(args.output, refracting ? "shadow-error" : "error");
     write_image(error_image(transmittance, exact, width, height, mask, 1.0), error_path.string());
     compare["shadows"] = {{"transmittance_rmse", e.rmse},
                           {"transmittance_max", e.max_abs},
                           {"share_over_0.05", e.share_over_threshold},
                           {"receivers", e.receivers},
-                          {"psnr", finite_or_inf(psnr(image, exact_image))},
+                          {"psnr", finite_or_inf(psnr(image, exact_shadow_image))},
                           {"error_image", error_path.string()},
                           {"reference_ms", ms_since(ref_start)}};
   }
@@ -323,17 +341,16 @@ int run_render(const RenderArgs& args) {
                frame_ms.size() == 1 ? "" : "s", *std::min_element(frame_ms.begin(), frame_ms.end()),
                *std::max_element(frame_ms.begin(), frame_ms.end()));
     if (!stages.empty()) fmt::print("stages ms  {} (host {:.2f})\n", stages, stats.host_ms);
-    const auto psnr_text = [](const nlohmann::json& v) {
-      return v.is_number() ? fmt::format("{:.2f}", v.get<double>()) : std::string("inf");
+    const auto number_text = [](const nlohmann::json& v) {
+      return v.is_number() ? fmt::format("{:.2f}", v.get<double>()) : v.get<std::string>();
     };
     if (compare.contains("refraction")) {
       const auto& c = compare["refraction"];
       fmt::print(
-          "vs matched image RMSE {:.4f}, PSNR {} dB; exit direction error mean {:.2f} deg, 95th {:.2f} deg "
-          "({} "
-          "pixels); event sequence differs on {:.2f}% of {} refracted pixels; {} non-finite pixels\n",
-          c["rmse"].get<double>(), psnr_text(c["psnr"]), c["angle_mean_deg"].get<double>(),
-          c["angle_p95_deg"].get<double>(), c["angle_pixels"].get<uint64_t>(),
+          "vs matched image RMSE {:.4f}, PSNR {} dB (exact shadows); exit direction error mean {} deg, 95th {} "
+          "deg ({} pixels); event sequence differs on {:.2f}% of {} refracted pixels; {} non-finite pixels\n",
+          c["rmse"].get<double>(), number_text(c["psnr"]), number_text(c["angle_mean_deg"]),
+          number_text(c["angle_p95_deg"]), c["angle_pixels"].get<uint64_t>(),
           100.0 * c["event_mismatch_share"].get<double>(), c["refracted_pixels"].get<uint64_t>(),
           c["nonfinite_pixels"].get<uint64_t>());
       fmt::print("wrote      {}\n", c["error_image"].get<std::string>());
@@ -344,7 +361,7 @@ int run_render(const RenderArgs& args) {
           "vs exact   transmittance RMSE {:.4f}, max {:.3f}, {:.2f}% of {} receivers off by > 0.05, PSNR {} "
           "dB\n",
           c["transmittance_rmse"].get<double>(), c["transmittance_max"].get<double>(),
-          100.0 * c["share_over_0.05"].get<double>(), c["receivers"].get<uint64_t>(), psnr_text(c["psnr"]));
+          100.0 * c["share_over_0.05"].get<double>(), c["receivers"].get<uint64_t>(), number_text(c["psnr"]));
       fmt::print("wrote      {}\n", c["error_image"].get<std::string>());
     }
     fmt::print("process ms {:.1f}\n", report["ms"]["process"].get<double>());
@@ -365,7 +382,7 @@ Command add_render(CLI::App& app) {
   std::string methods;
   for (const ShadowMethodInfo& info : kShadowMethods)
     methods += fmt::format("{}{} ({})", methods.empty() ? "" : "; ", info.name, info.summary);
-  sub->add_option("--shadows", args->shadows, methods)->capture_default_str();
+  sub->add_option("--shadows", args->shadows, methods + " (default: voxel; the references: reference)");
   sub->add_option("--shadow-res", args->shadow_res,
                   "columns along the longer side of the light's grid, and its slabs (voxel, uniform, filter, "
                   "opaque)")

@@ -40,7 +40,7 @@ std::vector<float> inward_distances(const ReferenceScene& scene, const TriangleS
   }
 
   const float epsilon = kVertexEpsilon * scene.scene_size();
-  std::vector<float> out(n, 0.0f);
+  std::vector<float> out(n, -1.0f);  // unknown: image-space falls back to d_V
   parallel_blocks(n, 1024, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) {
       if (owner[v] == kNoMaterial) continue;

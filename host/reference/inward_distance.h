@@ -15,11 +15,12 @@ namespace voxr {
 // One distance per vertex of `soup` (soup.positions order, world units): from the vertex along
 // -vertex_normals[v] to the first surface of the same dielectric (ReferenceScene::intersect from a small
 // offset, 1e-4 of the scene's size, so the vertex's own triangles are not hit; surfaces of other materials
-// on the way, e.g. an object inside the glass, are passed). 0 for vertices of no dielectric triangle and
-// where the ray finds nothing. A vertex's dielectric is the material of the first dielectric triangle (in
-// soup order) that uses it. `materials` are the ones `scene` was built with (the ReferenceScene does not
-// expose them): they say which triangles are dielectric. `vertex_normals` (render/vertex_normals.h) has one
-// unit normal per vertex. Throws voxr::Error when the sizes or ids do not match.
+// on the way, e.g. an object inside the glass, are passed). -1 (unknown: image-space then uses d_V alone) for
+// vertices of no dielectric triangle and where the ray finds nothing. A vertex's dielectric is the material
+// of the first dielectric triangle (in soup order) that uses it. `materials` are the ones `scene` was built
+// with (the ReferenceScene does not expose them): they say which triangles are dielectric. `vertex_normals`
+// (render/vertex_normals.h) has one unit normal per vertex. Throws voxr::Error when the sizes or ids do not
+// match.
 std::vector<float> inward_distances(const ReferenceScene& scene, const TriangleSoup& soup,
                                     const std::vector<Material>& materials,
                                     const std::vector<glm::vec3>& vertex_normals);

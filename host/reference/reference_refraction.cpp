@@ -88,6 +88,7 @@ struct Media {
     for (uint32_t d = uint32_t(at); d + 1 < depth; ++d) id[d] = id[d + 1];
     --depth;
   }
+  bool full() const { return depth >= kMaxMedia; }
   void push(uint32_t material) {
     if (depth < kMaxMedia) id[depth++] = material;
   }
@@ -152,8 +153,13 @@ class Tracer {
       }
       // A dielectric interface: leave the material if inside it, else enter it.
       const int inside = media.find(hit.material);
+      if (inside < 0 && media.full()) {  // deeper nesting than the stack holds: say so, do not guess
+        events |= VOXR_PATH_LOST;
+        ended = true;
+        break;
+      }
       const float n1 = top_ior(media);
-      const float n2 = inside >= 0 ? (inside > 0 ? material(media.id[inside - 1]).ior : 1.0f) : m.ior;
+      const float n2 = next_ior(media, inside, m.ior);
       glm::vec3 new_dir;
       if (refract(dir, vec(hit.normal), n1, n2, new_dir, cos_i)) {
         throughput *= 1.0f - voxr_schlick(cos_i, n1, n2);
@@ -206,8 +212,9 @@ class Tracer {
       }
       if (interfaces >= full_depth_) return glm::vec3(0.0f);
       const int inside = media.find(hit.material);
+      if (inside < 0 && media.full()) return glm::vec3(0.0f);  // nested deeper than the stack holds
       const float n1 = top_ior(media);
-      const float n2 = inside >= 0 ? (inside > 0 ? material(media.id[inside - 1]).ior : 1.0f) : m.ior;
+      const float n2 = next_ior(media, inside, m.ior);
       glm::vec3 normal = vec(hit.normal);
       if (glm::dot(dir, normal) > 0.0f) normal = -normal;
       glm::vec3 t_dir;
@@ -240,6 +247,16 @@ class Tracer {
   }
   float top_ior(const Media& media) const {
     return media.depth > 0 ? material(media.id[media.depth - 1]).ior : 1.0f;
+  }
+
+  // The index on the far side of an interface of a material at stack position `inside` (-1: not in the
+  // stack, so entering it, of index `entering`): leaving the innermost medium reveals the one below it (or
+  // air); leaving an outer one (overlapping solids) leaves the ray in the innermost, n2 = n1
+  // (refract_voxel.cl voxr_next_ior does the same).
+  float next_ior(const Media& media, int inside, float entering) const {
+    if (inside < 0) return entering;
+    if (uint32_t(inside) + 1 == media.depth) return inside > 0 ? material(media.id[inside - 1]).ior : 1.0f;
+    return top_ior(media);
   }
   // Beer-Lambert over `length` world units inside the innermost medium.
   glm::vec3 absorption(const Media& media, float length) const {
