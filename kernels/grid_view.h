@@ -22,9 +22,9 @@
 
 /* The buffer parameters are named gv_buf_*: named like the accessors (gv_count, gv_normal, ...) they would
  * hide those functions inside the kernel that declares them. */
-#define VOXR_GRID_VIEW_PARAMS                                                                            \
-  VoxGridView gv_params, __global const uint *gv_buf_occ, __global const ulong *gv_buf_ranked,          \
-      __global const uint *gv_buf_count, __global const float *gv_buf_normal,                           \
+#define VOXR_GRID_VIEW_PARAMS                                                                  \
+  VoxGridView gv_params, __global const uint *gv_buf_occ, __global const ulong *gv_buf_ranked, \
+      __global const uint *gv_buf_count, __global const float *gv_buf_normal,                  \
       __global const uint *gv_buf_material, __global const uint *gv_buf_inside
 #define VOXR_GRID_VIEW() \
   gv_make(&gv_params, gv_buf_occ, gv_buf_ranked, gv_buf_count, gv_buf_normal, gv_buf_material, gv_buf_inside)
@@ -42,8 +42,8 @@ typedef struct GridView {
 } GridView;
 
 inline GridView gv_make(const VoxGridView* p, __global const uint* occ, __global const ulong* ranked,
-                        __global const uint* count, __global const float* normal, __global const uint* material,
-                        __global const uint* inside) {
+                        __global const uint* count, __global const float* normal,
+                        __global const uint* material, __global const uint* inside) {
   GridView g;
   g.occ = occ;
   g.ranked = ranked;
@@ -107,19 +107,20 @@ inline uint gv_material(const GridView* g, uint rank) {
 /* World point -> grid units, with the grid's affine (VoxGridView.world_to_grid). */
 inline float3 gv_to_grid(const VoxGridView* p, float3 w) {
   const float* m = p->world_to_grid;
-  return (float3)(((m[0] * w.x + m[1] * w.y) + m[2] * w.z) + m[3], ((m[4] * w.x + m[5] * w.y) + m[6] * w.z) + m[7],
+  return (float3)(((m[0] * w.x + m[1] * w.y) + m[2] * w.z) + m[3],
+                  ((m[4] * w.x + m[5] * w.y) + m[6] * w.z) + m[7],
                   ((m[8] * w.x + m[9] * w.y) + m[10] * w.z) + m[11]);
 }
 
 /* ---- voxel traversal: the 3-D DDA of Amanatides & Woo (1987), in grid units --------------------------- */
 
 typedef struct GvRay {
-  int i, j, k;          /* current voxel */
-  int si, sj, sk;       /* step along each axis: -1, 0 or +1 */
-  float tx, ty, tz;     /* ray parameter of the next boundary crossing along each axis */
-  float dtx, dty, dtz;  /* parameter per voxel along each axis */
-  float t;              /* parameter where the current voxel was entered */
-  float t_exit;         /* parameter where the ray leaves the grid */
+  int i, j, k;         /* current voxel */
+  int si, sj, sk;      /* step along each axis: -1, 0 or +1 */
+  float tx, ty, tz;    /* ray parameter of the next boundary crossing along each axis */
+  float dtx, dty, dtz; /* parameter per voxel along each axis */
+  float t;             /* parameter where the current voxel was entered */
+  float t_exit;        /* parameter where the ray leaves the grid */
 } GvRay;
 
 /* [*t0, *t1]: where o + t d lies in the slab [0, hi] of one axis (inv = 1 / d). A ray parallel to the axis
@@ -139,6 +140,20 @@ inline void gv_slab(float o, float d, float inv, float hi, float* t0, float* t1)
   *t1 = fmax(a, b);
 }
 
+/* The stepping state of a ray from `origin` along `dir` (inv = 1 / dir) out of the current voxel (r->i, j,
+ * k): step signs, parameter per voxel and of the next boundary crossing along each axis. */
+inline void gv_ray_steps(GvRay* r, float3 origin, float3 dir, float3 inv) {
+  r->si = dir.x > 0.0f ? 1 : dir.x < 0.0f ? -1 : 0;
+  r->sj = dir.y > 0.0f ? 1 : dir.y < 0.0f ? -1 : 0;
+  r->sk = dir.z > 0.0f ? 1 : dir.z < 0.0f ? -1 : 0;
+  r->dtx = r->si != 0 ? fabs(inv.x) : INFINITY;
+  r->dty = r->sj != 0 ? fabs(inv.y) : INFINITY;
+  r->dtz = r->sk != 0 ? fabs(inv.z) : INFINITY;
+  r->tx = r->si != 0 ? ((float)(r->i + (r->si > 0)) - origin.x) * inv.x : INFINITY;
+  r->ty = r->sj != 0 ? ((float)(r->j + (r->sj > 0)) - origin.y) * inv.y : INFINITY;
+  r->tz = r->sk != 0 ? ((float)(r->k + (r->sk > 0)) - origin.z) * inv.z : INFINITY;
+}
+
 /* Starts the traversal of origin + t dir, t >= 0 (grid units), at the first voxel of the grid the ray
  * meets. Returns 0 when it misses the grid. */
 inline int gv_ray_begin(GvRay* r, const GridView* g, float3 origin, float3 dir) {
@@ -154,15 +169,7 @@ inline int gv_ray_begin(GvRay* r, const GridView* g, float3 origin, float3 dir) 
   r->i = clamp((int)floor(p.x), 0, (int)g->dims_x - 1);
   r->j = clamp((int)floor(p.y), 0, (int)g->dims_y - 1);
   r->k = clamp((int)floor(p.z), 0, (int)g->dims_z - 1);
-  r->si = dir.x > 0.0f ? 1 : dir.x < 0.0f ? -1 : 0;
-  r->sj = dir.y > 0.0f ? 1 : dir.y < 0.0f ? -1 : 0;
-  r->sk = dir.z > 0.0f ? 1 : dir.z < 0.0f ? -1 : 0;
-  r->dtx = r->si != 0 ? fabs(inv.x) : INFINITY;
-  r->dty = r->sj != 0 ? fabs(inv.y) : INFINITY;
-  r->dtz = r->sk != 0 ? fabs(inv.z) : INFINITY;
-  r->tx = r->si != 0 ? ((float)(r->i + (r->si > 0)) - origin.x) * inv.x : INFINITY;
-  r->ty = r->sj != 0 ? ((float)(r->j + (r->sj > 0)) - origin.y) * inv.y : INFINITY;
-  r->tz = r->sk != 0 ? ((float)(r->k + (r->sk > 0)) - origin.z) * inv.z : INFINITY;
+  gv_ray_steps(r, origin, dir, inv);
   r->t = t_enter;
   r->t_exit = t_exit;
   return 1;

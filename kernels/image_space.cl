@@ -43,19 +43,6 @@ inline int is_project(const RenderCamera* cam, float3 p, uint* x, uint* y) {
   return 1;
 }
 
-inline SurfaceSample is_no_surface(void) {
-  SurfaceSample s;
-  rp_store3(s.position, (float3)(0.0f));
-  s.triangle = VOXR_NO_TRIANGLE;
-  rp_store3(s.normal, (float3)(0.0f));
-  s.material = 0u;
-  rp_store3(s.geometric_normal, (float3)(0.0f));
-  s.distance = 0.0f;
-  s.barycentric[0] = s.barycentric[1] = 0.0f;
-  s.pad[0] = s.pad[1] = 0.0f;
-  return s;
-}
-
 /* d_N at the front sample: the per-vertex inward distances interpolated with its barycentrics; -1 when
  * unknown. */
 inline float is_inward_distance(const SurfaceSample* s, __global const uint4* triangles,
@@ -78,23 +65,14 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void image_spac
   if (id >= pixels) return;
   const float3 dir = rp_camera_direction(&cam, id % cam.width, id / cam.width);
   const SurfaceSample s = primary[id];
-  const uint m0 = min(s.material, material_count - 1u);
-  if (s.triangle == VOXR_NO_TRIANGLE || materials[m0].kind != VOXR_MATERIAL_DIELECTRIC) {
-    ends[id] = s;
-    paths[id] = rp_identity(dir);
-    return;
-  }
-
   /* 1. The front surface, exact: Schlick's F reflects the environment, 1 - F refracts in. */
-  RefractionPath path = rp_identity(dir);
+  RefractionPath path;
+  float3 t1;
+  float cos_i;
+  if (!rp_front_surface(s, dir, materials, material_count, id, ends, paths, &path, &t1, &cos_i)) return;
+  const uint m0 = min(s.material, material_count - 1u);
   const RenderMaterial glass = materials[m0];
   const float ior = glass.ior;
-  const float3 n_front = vload3(0, s.normal); /* turned towards the eye: outward here */
-  float cos_i;
-  float3 t1;
-  rp_refract(dir, n_front, 1.0f, ior, &t1, &cos_i); /* n1 < n2: never total internal reflection */
-  path.fresnel = voxr_schlick(cos_i, 1.0f, ior);
-  rp_store3(path.reflect_direction, rp_reflect(dir, n_front));
   float3 throughput = (float3)(1.0f - path.fresnel);
   uint events = 1u;
 
@@ -144,7 +122,7 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void image_spac
     const SurfaceSample o = opaque[y2 * cam.width + x2];
     if (o.triangle != VOXR_NO_TRIANGLE) d_g = length(vload3(0, o.position) - p2);
   }
-  SurfaceSample end = is_no_surface();
+  SurfaceSample end = rp_no_surface();
   int found = 0;
   for (uint k = 0; k < max(p.iterations, 1u); ++k) {
     uint xq, yq;
@@ -165,7 +143,7 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void image_spac
       rp_store3(end.normal, -vload3(0, end.normal));
     }
   } else {
-    end = is_no_surface();
+    end = rp_no_surface();
     events |= VOXR_PATH_ENV;
   }
 

@@ -95,19 +95,14 @@ inline void march_restart(March* m, const GridView* g, float3 origin, float3 dir
   m->t = 0.0f;
   if (dda) {
     GvRay* r = &m->ray;
-    const float3 inv = (float3)(1.0f) / dir;
     r->i = i;
     r->j = j;
     r->k = k;
-    r->si = dir.x > 0.0f ? 1 : dir.x < 0.0f ? -1 : 0;
-    r->sj = dir.y > 0.0f ? 1 : dir.y < 0.0f ? -1 : 0;
-    r->sk = dir.z > 0.0f ? 1 : dir.z < 0.0f ? -1 : 0;
-    r->dtx = r->si != 0 ? fabs(inv.x) : INFINITY;
-    r->dty = r->sj != 0 ? fabs(inv.y) : INFINITY;
-    r->dtz = r->sk != 0 ? fabs(inv.z) : INFINITY;
-    r->tx = r->si != 0 ? fmax(((float)(i + (r->si > 0)) - origin.x) * inv.x, 0.0f) : INFINITY;
-    r->ty = r->sj != 0 ? fmax(((float)(j + (r->sj > 0)) - origin.y) * inv.y, 0.0f) : INFINITY;
-    r->tz = r->sk != 0 ? fmax(((float)(k + (r->sk > 0)) - origin.z) * inv.z, 0.0f) : INFINITY;
+    gv_ray_steps(r, origin, dir, (float3)(1.0f) / dir);
+    /* The origin may lie a hair outside voxel (i, j, k): no crossing before it. */
+    r->tx = fmax(r->tx, 0.0f);
+    r->ty = fmax(r->ty, 0.0f);
+    r->tz = fmax(r->tz, 0.0f);
     r->t = 0.0f;
   }
 }
@@ -206,22 +201,12 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
   const GridView g = VOXR_GRID_VIEW();
   float3 dir = rp_camera_direction(&cam, id % cam.width, id / cam.width);
   const SurfaceSample s = primary[id];
-  const uint m0 = min(s.material, material_count - 1u);
-  if (s.triangle == VOXR_NO_TRIANGLE || materials[m0].kind != VOXR_MATERIAL_DIELECTRIC) {
-    ends[id] = s;
-    paths[id] = rp_identity(dir);
-    return;
-  }
-
-  /* The front surface, exact: Schlick's F reflects the environment, 1 - F refracts in. */
-  RefractionPath path = rp_identity(dir);
-  const float3 n_front = vload3(0, s.normal); /* turned towards the eye: outward here */
-  const float n_in = materials[m0].ior;
-  float cos_i;
+  RefractionPath path;
   float3 t_dir;
-  rp_refract(dir, n_front, 1.0f, n_in, &t_dir, &cos_i);
-  path.fresnel = voxr_schlick(cos_i, 1.0f, n_in);
-  rp_store3(path.reflect_direction, rp_reflect(dir, n_front));
+  float cos_i;
+  if (!rp_front_surface(s, dir, materials, material_count, id, ends, paths, &path, &t_dir, &cos_i)) return;
+  const uint m0 = min(s.material, material_count - 1u);
+  const float3 n_front = vload3(0, s.normal);
   float3 throughput = (float3)(1.0f - path.fresnel);
   uint events = 1u;
   dir = t_dir;
@@ -240,15 +225,7 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
   int inside_grid = march_begin(&m, &g, origin, dir, p.step_dda);
   float3 last = origin; /* where absorption was last accounted */
   int ended = 0;
-  SurfaceSample end;
-  rp_store3(end.position, (float3)(0.0f));
-  rp_store3(end.normal, (float3)(0.0f));
-  rp_store3(end.geometric_normal, (float3)(0.0f));
-  end.triangle = VOXR_NO_TRIANGLE;
-  end.material = 0u;
-  end.distance = 0.0f;
-  end.barycentric[0] = end.barycentric[1] = 0.0f;
-  end.pad[0] = end.pad[1] = 0.0f;
+  SurfaceSample end = rp_no_surface();
   /* Voxel normals follow the mesh's winding, the front normal faces the eye: give the run test the voxels'
    * orientation, or a mesh wound inwards would see its own front shell as the next surface. */
   if (inside_grid) {

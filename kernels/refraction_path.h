@@ -1,6 +1,7 @@
 /* refraction_path.h — what every refraction kernel (refract_voxel.cl, image_space.cl) shares: the camera
- * ray of a pixel, the identity path of a pixel that sees no dielectric, Snell refraction of a vector, and
- * writing a path's end. OpenCL only; the interface optics themselves are in refraction.h. */
+ * ray of a pixel, the identity path of a pixel that sees no dielectric, Snell refraction of a vector, the
+ * exact front surface, and an end without a surface. OpenCL only; the interface optics themselves are in
+ * refraction.h. */
 #ifndef VOXR_REFRACTION_PATH_H
 #define VOXR_REFRACTION_PATH_H
 
@@ -56,6 +57,43 @@ inline int rp_refract(float3 d, float3 n, float n1, float n2, float3* t, float* 
   }
   const float eta = n1 / n2;
   *t = normalize(eta * d + (eta * ci - ct) * n);
+  return 1;
+}
+
+/* The end of a path that meets no surface: VOXR_NO_TRIANGLE and zeros. */
+inline SurfaceSample rp_no_surface(void) {
+  SurfaceSample s;
+  rp_store3(s.position, (float3)(0.0f));
+  s.triangle = VOXR_NO_TRIANGLE;
+  rp_store3(s.normal, (float3)(0.0f));
+  s.material = 0u;
+  rp_store3(s.geometric_normal, (float3)(0.0f));
+  s.distance = 0.0f;
+  s.barycentric[0] = s.barycentric[1] = 0.0f;
+  s.pad[0] = s.pad[1] = 0.0f;
+  return s;
+}
+
+/* Every refraction kernel's start at pixel `id`, whose camera ray (direction dir) sees primary sample s. A
+ * pixel that sees no dielectric gets its identity path and its sample as the end, written, and 0 is returned.
+ * Otherwise the front surface, exact: *path receives Schlick's F and the mirror direction (the environment it
+ * reflects), *t the refracted direction (n1 = 1 < n2: never total internal reflection), *cos_i the incidence
+ * cosine; returns 1. */
+inline int rp_front_surface(SurfaceSample s, float3 dir, __global const RenderMaterial* materials,
+                            uint material_count, uint id, __global SurfaceSample* ends,
+                            __global RefractionPath* paths, RefractionPath* path, float3* t, float* cos_i) {
+  const uint m0 = min(s.material, material_count - 1u);
+  if (s.triangle == VOXR_NO_TRIANGLE || materials[m0].kind != VOXR_MATERIAL_DIELECTRIC) {
+    ends[id] = s;
+    paths[id] = rp_identity(dir);
+    return 0;
+  }
+  *path = rp_identity(dir);
+  const float3 n_front = vload3(0, s.normal); /* turned towards the eye: outward here */
+  const float ior = materials[m0].ior;
+  rp_refract(dir, n_front, 1.0f, ior, t, cos_i);
+  path->fresnel = voxr_schlick(*cos_i, 1.0f, ior);
+  rp_store3(path->reflect_direction, rp_reflect(dir, n_front));
   return 1;
 }
 

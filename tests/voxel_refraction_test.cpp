@@ -163,8 +163,9 @@ TEST(VoxelRefraction, EveryRefractionSceneRendersFiniteWithShadows) {
       expect_all_finite(s.frame);
       for (const glm::vec4& p : s.frame.image.pixels) ASSERT_GE(std::min({p.x, p.y, p.z}), 0.0f);
       EXPECT_GT(s.glass_pixels, 50u);
-      if (method == RefractionMethod::kVoxelTwo)
+      if (method == RefractionMethod::kVoxelTwo) {
         for (const RefractionPath& p : s.frame.paths) ASSERT_LE(p.events & VOXR_PATH_EVENTS_MASK, 2u);
+      }
     }
 }
 

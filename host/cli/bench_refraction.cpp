@@ -14,6 +14,7 @@
 
 #include "bench/median.h"
 #include "cl/cl_runtime.h"
+#include "cli/bench_support.h"
 #include "cli/commands.h"
 #include "cli/parse_args.h"
 #include "cli/process.h"
@@ -101,15 +102,9 @@ struct Row {
   uint64_t grid_bytes = 0;
 };
 
-std::string scene_label(const std::string& scene) {
-  return fs::path(scene).stem().string();
-}
-
 std::string load_average() {
-  std::ifstream f("/proc/loadavg");
-  double a = 0, b = 0, c = 0;
-  f >> a >> b >> c;
-  return fmt::format("{:.2f} {:.2f} {:.2f}", a, b, c);
+  const std::array<double, 3> load = load_averages();
+  return fmt::format("{:.2f} {:.2f} {:.2f}", load[0], load[1], load[2]);
 }
 
 // The process's own command line, as the user typed it (voxr-render's argv is voxr's, exec'd).
@@ -292,40 +287,11 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
     // What a user gets: a fresh `voxr render` process.
     if (args.fresh > 0) {
       progress(fmt::format("{}: fresh processes", label));
-      const fs::path self = executable_path();
-      const fs::path image =
-          fs::temp_directory_path() / fmt::format("voxr-bench-refraction-{}.png", ::getpid());
-      std::vector<double> wall;
-      for (int r = 0; r < args.fresh; ++r) {
-        std::vector<std::string> argv = {self.string(),
-                                         "render",
-                                         scene_name,
-                                         "--refraction",
-                                         "voxel-multi",
-                                         "--res",
-                                         "256",
-                                         "--shadows",
-                                         args.shadows,
-                                         "--shadow-res",
-                                         std::to_string(args.shadow_res),
-                                         "--size",
-                                         args.size,
-                                         "-q",
-                                         "-o",
-                                         image.string()};
-        if (!args.device.empty()) {
-          argv.push_back("--device");
-          argv.push_back(args.device);
-        }
-        const auto start = Clock::now();
-        if (run_program(argv) != 0) fail("the fresh process `voxr render` failed (see above)");
-        wall.push_back(ms_since(start));
-      }
-      std::error_code ec;
-      fs::remove(image, ec);
-      fresh_table += fmt::format("| {} | {} | {:.0f} | {:.0f} | {:.0f} |\n", label, soup.triangle_count(),
-                                 median(wall), *std::min_element(wall.begin(), wall.end()),
-                                 *std::max_element(wall.begin(), wall.end()));
+      const std::vector<double> wall = time_fresh_renders(
+          {scene_name, "--refraction", "voxel-multi", "--res", "256", "--shadows", args.shadows,
+           "--shadow-res", std::to_string(args.shadow_res), "--size", args.size},
+          args.fresh, args.device, "bench-refraction");
+      fresh_table += fresh_table_row(label, soup.triangle_count(), wall);
       progress_done();
       fmt::print("  fresh `voxr render --refraction voxel-multi --res 256`: {:.0f} ms\n", median(wall));
       std::fflush(stdout);

@@ -12,6 +12,7 @@
 
 #include "bench/median.h"
 #include "cl/cl_runtime.h"
+#include "cli/bench_support.h"
 #include "cli/commands.h"
 #include "cli/parse_args.h"
 #include "cli/process.h"
@@ -69,17 +70,6 @@ struct Row {
   uint64_t triangles = 0;
 };
 
-std::string scene_label(const std::string& scene) {
-  return scene == "default" ? "default" : fs::path(scene).stem().string();
-}
-
-double load_average() {
-  std::ifstream f("/proc/loadavg");
-  double a = 0.0;
-  f >> a;
-  return a;
-}
-
 std::string fmt_psnr(double p) {
   return std::isfinite(p) ? fmt::format("{:.2f}", p) : "inf";
 }
@@ -109,7 +99,7 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
     const std::vector<RenderMaterial> render_mats = render_materials(materials);
     const std::string label = scene_label(scene_name);
     fmt::print("{}: {} triangles, {}x{}, load {:.2f}\n", label, soup.triangle_count(), width, height,
-               load_average());
+               load_averages()[0]);
     std::fflush(stdout);
 
     FrameRenderer renderer(cl);
@@ -180,36 +170,19 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
             "  {:<18} {:>4}: {:8.2f} ms [{:.2f}, {:.2f}]  RMSE {:.4f} max {:.3f} >0.05 {:.2f}%  PSNR {} "
             "({}; load {:.2f})\n",
             m.label, res, row.frame_ms, row.frame_min, row.frame_max, row.error.rmse, row.error.max_abs,
-            100.0 * row.error.share_over_threshold, fmt_psnr(row.psnr), row.light_grid, load_average());
+            100.0 * row.error.share_over_threshold, fmt_psnr(row.psnr), row.light_grid, load_averages()[0]);
         std::fflush(stdout);
       }
     }
 
     // What a user gets: a fresh `voxr render` process.
     if (args.fresh > 0) {
-      const fs::path self = executable_path();
-      const fs::path image = fs::temp_directory_path() / fmt::format("voxr-bench-shadows-{}.png", ::getpid());
-      std::vector<double> wall;
-      for (int r = 0; r < args.fresh; ++r) {
-        std::vector<std::string> argv = {self.string(), "render"};
-        if (scene_name != "default") argv.push_back(scene_name);
-        for (const std::string& a :
-             {std::string("--shadows"), std::string("voxel"), std::string("--shadow-res"), std::string("256"),
-              std::string("--size"), args.size, std::string("-q"), std::string("-o"), image.string()})
-          argv.push_back(a);
-        if (!args.device.empty()) {
-          argv.push_back("--device");
-          argv.push_back(args.device);
-        }
-        const auto start = Clock::now();
-        if (run_program(argv) != 0) fail("the fresh process `voxr render` failed (see above)");
-        wall.push_back(ms_since(start));
-      }
-      std::error_code ec;
-      fs::remove(image, ec);
-      fresh_table += fmt::format("| {} | {} | {:.0f} | {:.0f} | {:.0f} |\n", label, soup.triangle_count(),
-                                 median(wall), *std::min_element(wall.begin(), wall.end()),
-                                 *std::max_element(wall.begin(), wall.end()));
+      std::vector<std::string> render_args = {"--shadows", "voxel",  "--shadow-res",
+                                              "256",       "--size", args.size};
+      if (scene_name != "default") render_args.insert(render_args.begin(), scene_name);
+      const std::vector<double> wall =
+          time_fresh_renders(render_args, args.fresh, args.device, "bench-shadows");
+      fresh_table += fresh_table_row(label, soup.triangle_count(), wall);
       fmt::print("  fresh `voxr render --shadows voxel --shadow-res 256`: {:.0f} ms\n", median(wall));
     }
   }

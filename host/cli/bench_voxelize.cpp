@@ -13,6 +13,7 @@
 #include "bench/median.h"
 #include "bench/voxelize_cases.h"
 #include "cl/cl_runtime.h"
+#include "cli/bench_support.h"
 #include "cli/process.h"
 #include "core/clock.h"
 #include "io/atomic_file.h"
@@ -24,13 +25,6 @@ namespace voxr::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-double load_average() {
-  std::ifstream in("/proc/loadavg");
-  double one = -1.0;
-  in >> one;
-  return one;
-}
 
 struct Spread {
   double median = 0.0, min = 0.0, max = 0.0;
@@ -133,7 +127,7 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
     for (const VoxelizeCase* c : cases) {
       const VoxelizeOptions options = c->options();
       for (uint32_t res : args.resolutions) {
-        const double load_before = load_average();
+        const double load_before = load_averages()[0];
         GridRequest request;
         request.resolution = res;
         const fs::path output = args.write.empty() ? fs::path() : scratch / ("out." + args.write);
@@ -180,7 +174,7 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
             fresh_process.push_back(f.process_ms);
           }
         }
-        const double load_after = load_average();
+        const double load_after = load_averages()[0];
         const Spread fk = spread(frame_kernels), fw = spread(frame_wall), jw = spread(job_wall),
                      nw = spread(fresh_wall), np = spread(fresh_process);
         const double tri_per_s = fk.median > 0 ? double(frame.triangles) / (fk.median * 1e-3) : 0.0;

@@ -1,5 +1,5 @@
-// Lookups in a constexpr table of named enum values (kShadowMethods, kRefractionMethods, ...), each entry
-// with a `name`; `key` picks the entry's enum member.
+// Constexpr tables of named enum values (kShadowMethods, kRefractionMethods, kStepRules, ...): each entry an
+// enum value, the name the CLI and reports spell, and a one-line summary for --help.
 #pragma once
 
 #include <string>
@@ -9,20 +9,27 @@
 
 namespace voxr {
 
-// The entry of `table` whose key(entry) == value. Throws InternalError when there is none.
-template <class Table, class Key, class Value>
-const auto& named_entry(const Table& table, Key key, Value value) {
+template <class Enum>
+struct NamedValue {
+  Enum value;
+  const char* name;
+  const char* summary;
+};
+
+// The entry of `table` for `value`. Throws InternalError when there is none.
+template <class Table, class Enum>
+const auto& named_entry(const Table& table, Enum value) {
   for (const auto& entry : table)
-    if (key(entry) == value) return entry;
+    if (entry.value == value) return entry;
   throw InternalError("a value missing from its name table");
 }
 
-// The key of the entry named `name`. Throws voxr::Error "unknown <what> '<name>' (known: a, b, c)".
-template <class Table, class Key>
-auto parse_named(const Table& table, Key key, std::string_view name, std::string_view what) {
+// The value named `name`. Throws voxr::Error "unknown <what> '<name>' (known: a, b, c)".
+template <class Table>
+auto parse_named(const Table& table, std::string_view name, std::string_view what) {
   std::string known;
   for (const auto& entry : table) {
-    if (name == entry.name) return key(entry);
+    if (name == entry.name) return entry.value;
     known += (known.empty() ? "" : ", ") + std::string(entry.name);
   }
   fail("unknown {} '{}' (known: {})", what, name, known);

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "core/named_values.h"
+
 namespace voxr {
 
 enum class RefractionMethod { kVoxelMulti, kVoxelTwo, kImageSpace, kReference, kReferenceFull, kNone };
@@ -15,11 +17,7 @@ enum class StepRule { kPapers, kDda };
 // normal sums of its 3x3x3 neighbourhood of the same material weighted by distance to the hit (smooth).
 enum class NormalKind { kVoxel, kSmooth };
 
-struct RefractionMethodInfo {
-  RefractionMethod method;
-  const char* name;
-  const char* summary;
-};
+using RefractionMethodInfo = NamedValue<RefractionMethod>;
 inline constexpr std::array<RefractionMethodInfo, 6> kRefractionMethods = {{
     {RefractionMethod::kVoxelMulti, "voxel-multi",
      "Chang & Lai PG 2011: Snell-law marching through the voxels, refracting at every boundary"},
@@ -34,21 +32,13 @@ inline constexpr std::array<RefractionMethodInfo, 6> kRefractionMethods = {{
     {RefractionMethod::kNone, "none", "no refraction: dielectrics shaded flat"},
 }};
 
-struct StepRuleInfo {
-  StepRule rule;
-  const char* name;
-  const char* summary;
-};
+using StepRuleInfo = NamedValue<StepRule>;
 inline constexpr std::array<StepRuleInfo, 2> kStepRules = {{
     {StepRule::kPapers, "papers", "fixed step h / cos theta along the dominant axis (may skip corners)"},
     {StepRule::kDda, "dda", "exact voxel traversal (3-D DDA): every voxel the ray passes through"},
 }};
 
-struct NormalKindInfo {
-  NormalKind kind;
-  const char* name;
-  const char* summary;
-};
+using NormalKindInfo = NamedValue<NormalKind>;
 inline constexpr std::array<NormalKindInfo, 2> kNormalKinds = {{
     {NormalKind::kVoxel, "voxel", "the voxel's normal sum (the papers)"},
     {NormalKind::kSmooth, "smooth", "normal sums of the 3x3x3 neighbours, weighted by distance to the hit"},

@@ -4,6 +4,8 @@
 #include <array>
 #include <string_view>
 
+#include "core/named_values.h"
+
 namespace voxr {
 
 // Receivers move this many slabs (or depth-map texels) towards the light and this many columns off their
@@ -15,11 +17,7 @@ inline constexpr float kDefaultNormalOffset = 0.25f;
 
 enum class ShadowMethod { kVoxel, kUniform, kFilter, kOpaque, kReference, kNone };
 
-struct ShadowMethodInfo {
-  ShadowMethod method;
-  const char* name;
-  const char* summary;
-};
+using ShadowMethodInfo = NamedValue<ShadowMethod>;
 
 inline constexpr std::array<ShadowMethodInfo, 6> kShadowMethods = {{
     {ShadowMethod::kVoxel, "voxel",
