@@ -1,0 +1,64 @@
+// The stability suite (issue 11): one scene per failure mode the sources name or that we found, every method
+// run on it, each measure checked against a bound. `voxr bench stability` runs the full suite and writes
+// docs/stability.md (tables and small pictures, generated, never edited by hand); the test suite runs the
+// small version of every case (StabilityContext::full false) and fails when a bound is broken, so a
+// regression in stability fails a test.
+//
+// Families, each in its own file (one concept per file):
+//   voxelization  voxelization_stability.cpp: 24 random rotations of each test mesh (mean, max and spread of
+//                 each method's error), steep triangles (centre-mode holes), sub-voxel features and thin
+//                 shells, grid-aligned planes, non-watertight and duplicated geometry, meshes far from the
+//                 origin;
+//   rendering     rendering_stability.cpp: grazing light and view, receivers among casters, sheet
+//                 self-shadowing (acne, leaks), total internal reflection (IOR 2.42), several boundary voxels
+//                 along one ray, rays slipping through voxel corners, multi-material boundaries;
+//   inputs        input_stability.cpp: degenerate and non-finite inputs (a clear error or a documented
+//                 result, never a crash or NaN pixels);
+//   temporal      temporal_stability.cpp: a slowly moving and deforming scene, each method's frame-to-frame
+//                 change against the reference's (flicker).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cl/cl_runtime.h"
+
+namespace voxr {
+
+// One measure of one method on one case. `pass` is value <= bound (or, for a measure that must be at
+// least the bound, value >= bound: `at_least`).
+struct StabilityRow {
+  std::string family;   // "voxelization", "rendering", "inputs", "temporal"
+  std::string name;     // the case, e.g. "random-rotations/bunny"
+  std::string method;   // e.g. "slice-conservative", "voxel-multi", "reference"
+  std::string measure;  // what `value` is, with its unit, e.g. "false-negative share (mean of 24)"
+  double value = 0.0;
+  double bound = 0.0;
+  bool at_least = false;
+  std::string note;     // one short line: what the number means or what happened (an error's text)
+  std::string picture;  // optional: a small PNG written under StabilityContext::picture_dir (relative path)
+  bool pass() const { return at_least ? value >= bound : value <= bound; }
+};
+
+struct StabilityContext {
+  ClRuntime& cl;
+  bool full = false;                     // false: the small version the test suite runs (seconds per case)
+  std::filesystem::path picture_dir;     // empty: write no pictures
+  std::function<void(const std::string&)> progress;  // one line per finished case; may be empty
+};
+
+struct StabilityCase {
+  std::string family, name;
+  std::string description;  // one sentence: the failure mode and the source that names it
+  std::function<std::vector<StabilityRow>(StabilityContext&)> run;
+};
+
+std::vector<StabilityCase> voxelization_stability_cases();
+std::vector<StabilityCase> rendering_stability_cases();
+std::vector<StabilityCase> input_stability_cases();
+std::vector<StabilityCase> temporal_stability_cases();
+
+}  // namespace voxr
