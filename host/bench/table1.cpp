@@ -16,8 +16,17 @@ namespace voxr {
 
 namespace {
 
-// The voxelizer options of a core Table 1 method name ("hybrid-conservative", "slice-center", ...).
-VoxelizeOptions table1_options(const std::string& method) {
+// One timed voxelization with the named method.
+VoxelGrid run_method(Voxelizer& voxelizer, const Table1Options& table, const std::string& method,
+                     const TriangleSoup& soup, const GridSpec& grid, VoxelizeStats* stats) {
+  if (const auto peer = table.peers.find(method); peer != table.peers.end())
+    return peer->second(soup, grid, stats);
+  return voxelizer.run(soup, grid, table1_voxelize_options(method), stats);
+}
+
+}  // namespace
+
+VoxelizeOptions table1_voxelize_options(const std::string& method) {
   VoxelizeOptions options;
   if (method == "slicemap-uniform" || method == "slicemap-local") {
     options.method = VoxelizeMethod::kSlicemap;
@@ -29,16 +38,6 @@ VoxelizeOptions table1_options(const std::string& method) {
   if (dash != std::string::npos) options.mode = parse_raster_mode(method.substr(dash + 1));
   return options;
 }
-
-// One timed voxelization with the named method.
-VoxelGrid run_method(Voxelizer& voxelizer, const Table1Options& table, const std::string& method,
-                     const TriangleSoup& soup, const GridSpec& grid, VoxelizeStats* stats) {
-  if (const auto peer = table.peers.find(method); peer != table.peers.end())
-    return peer->second(soup, grid, stats);
-  return voxelizer.run(soup, grid, table1_options(method), stats);
-}
-
-}  // namespace
 
 const std::vector<std::string>& table1_methods() {
   static const std::vector<std::string> methods = {"hybrid-conservative", "slice-conservative",
@@ -62,7 +61,7 @@ std::vector<Table1Row> run_table1(ClRuntime& cl, const Table1Options& options) {
           m);
   Voxelizer voxelizer(cl);
   for (const std::string& m : options.methods)
-    if (!options.peers.count(m)) voxelizer.prepare(table1_options(m));
+    if (!options.peers.count(m)) voxelizer.prepare(table1_voxelize_options(m));
   std::vector<Table1Row> rows;
   for (const Table1Model& model : options.models) {
     const BenchMesh mesh = make_bench_mesh(model.mesh);

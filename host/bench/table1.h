@@ -48,6 +48,8 @@ struct Table1Row {
 
 // "hybrid-conservative", "slice-conservative", "slice-center", "grid", "slicemap-uniform", "slicemap-local".
 const std::vector<std::string>& table1_methods();
+// The voxelizer options of a core method name of table1_methods() (peers are not voxelizer options).
+VoxelizeOptions table1_voxelize_options(const std::string& method);
 // Torus 800, ~43K (armadillo), ~97K (elephant), ~655K (shark x64), ~871K (armadillo x16), ~1.09M (bunny x16).
 std::vector<Table1Model> table1_default_models();
 

@@ -1,0 +1,48 @@
+// The stability suite's runner and page (issue 11): runs a list of StabilityCase (stability_case.h), one row
+// per measure, and writes docs/stability.md: a generated header (command, device, date, load), then per
+// family a table (case, method, measure, value, bound, pass/FAIL, note) and the cases' pictures.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "stability/stability_case.h"
+
+namespace voxr {
+
+// Every case of the suite, the families in page order. The integrator adds rendering_stability_cases() and
+// temporal_stability_cases() here (the one list of the suite's families).
+std::vector<StabilityCase> all_stability_cases();
+
+struct StabilityCaseResult {
+  const StabilityCase* source = nullptr;
+  std::vector<StabilityRow> rows;
+  double seconds = 0.0;  // wall time of the case
+};
+
+// Runs every case in order. A case that throws gets one failing row recording the exception's text (a
+// crash of the suite would hide the other cases); `ctx.progress` gets one line per case.
+std::vector<StabilityCaseResult> run_stability_cases(const std::vector<StabilityCase>& cases,
+                                                     StabilityContext& ctx);
+
+// The rows of `results` that break their bound, one line each ("family name method: measure value > bound
+// (note)"); empty when all pass.
+std::vector<std::string> stability_failures(const std::vector<StabilityCaseResult>& results);
+
+struct StabilityHeader {
+  std::string command;  // the command line that regenerates the page
+  std::string device;
+  std::string date;  // UTC, ISO 8601
+  std::string load;  // load averages when the suite ran
+};
+
+// The Markdown page: header, then per family (in order of first appearance) the cases' descriptions, one
+// table of all their rows, and their pictures (paths relative to `picture_link`, the folder the page
+// links pictures from). A bound of infinity is a documented result: shown as "—" and always passing.
+std::string stability_markdown(const std::vector<StabilityCaseResult>& results, const StabilityHeader& header,
+                               const std::string& picture_link);
+
+// Formats a value or bound for the tables: integers as such, others with 4 significant digits.
+std::string format_stability_number(double v);
+
+}  // namespace voxr
