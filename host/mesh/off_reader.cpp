@@ -40,7 +40,8 @@ size_t check_numbers(const std::string& name, std::string_view line, size_t numb
   double unused;
   for (std::string_view t : tokens)
     if (!text::parse_number(t, unused))
-      fail("{}: line {}: '{}' is not a finite number", name, number, printable(t));
+      fail("{}: line {}: '{}' is not a finite number (of magnitude at most {:g})", name, number, printable(t),
+           text::kMaxCoordinate);
   return tokens.size();
 }
 

@@ -92,8 +92,8 @@ inline glm::dvec3 parse_vertex(const std::string& name, size_t line,
   glm::dvec3 p;
   for (int c = 0; c < 3; ++c)
     if (!parse_number(tokens[c + 1], p[c]))
-      fail("{}: line {}: vertex coordinate '{}' is not a finite number", name, line,
-           printable(tokens[c + 1]));
+      fail("{}: line {}: vertex coordinate '{}' is not a finite number (of magnitude at most {:g})", name,
+           line, printable(tokens[c + 1]), kMaxCoordinate);
   return p;
 }
 

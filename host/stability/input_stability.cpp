@@ -71,8 +71,11 @@ std::vector<InputCase> input_cases() {
                    "v 0.25 0.5 0.75\nv 0.25 0.5 0.75\nv 0.25 0.5 0.75\nf 1 2 3\n", Expect::kEither});
   cases.push_back({"empty", "A file with vertices and no triangles: must be rejected.", "v 0 0 0\nv 1 0 0\n",
                    Expect::kRejected});
-  cases.push_back({"huge-coordinates", "A box 1e30 across at 1e30: float range, absurd size.",
-                   box_obj(glm::dvec3(1e30), glm::dvec3(2e30)), Expect::kEither});
+  cases.push_back({"huge-coordinates", "A box from -1e30 to 1e30, the largest coordinates the readers take.",
+                   box_obj(glm::dvec3(-1e30), glm::dvec3(1e30)), Expect::kEither});
+  cases.push_back({"beyond-coordinate-limit",
+                   "A box at 2e30, past the readers' limit (1e30): must be rejected.",
+                   box_obj(glm::dvec3(2e30), glm::dvec3(3e30)), Expect::kRejected});
   cases.push_back({"extreme-aspect", "A box 1000 x 0.001 x 1: one voxel thick at any resolution.",
                    box_obj(glm::dvec3(0.0), glm::dvec3(1000.0, 0.001, 1.0)), Expect::kAccepted});
   return cases;
@@ -125,6 +128,9 @@ std::vector<StabilityRow> run_input(StabilityContext& ctx, const InputCase& c) {
     r.bound = 1.0;
     r.at_least = true;
     r.note = o.ok ? o.text : "error: " + o.text;
+    // The page is generated: the temporary folder (a process id) stays out of it.
+    for (size_t at; (at = r.note.find(dir.string() + "/")) != std::string::npos;)
+      r.note.erase(at, dir.string().size() + 1);
     rows.push_back(r);
     rejected = !o.ok;
   };
