@@ -404,7 +404,7 @@ int run_render(const RenderArgs& args) {
           target->sample_error, target->sample_width, target->sample_height, *args.error_target,
           target->search_ms);
       fmt::print(
-          "vs 512     {:.1f} MiB and {:.2f} ms per frame on fixed 512 grids: saves {:.1f} MiB ({:.0f}%) and "
+          "vs 512     {:.1f} MiB and {:.2f} ms per frame on fixed 512 grids: saving {:.1f} MiB ({:.0f}%) and "
           "{:.2f} ms ({:.0f}%)\n",
           double(fixed_bytes) / (1 << 20), fixed_stats.frame_ms,
           (double(fixed_bytes) - double(bytes)) / (1 << 20),

@@ -353,7 +353,7 @@ int run_voxelize(const VoxelizeArgs& args) {
           *args.error_target, choice->met ? "met" : "NOT met (the least error measured)", choice->resolution,
           choice->error, trials, search_ms);
       fmt::print(
-          "vs res {}  {:.1f} MiB and {:.2f} ms wall on {} x {} x {}: saves {:.1f} MiB ({:.0f}%) and {:.2f} "
+          "vs res {}  {:.1f} MiB and {:.2f} ms wall on {} x {} x {}: saving {:.1f} MiB ({:.0f}%) and {:.2f} "
           "ms\n",
           kTargetCompare, double(fixed.device_bytes) / (1 << 20), fixed.wall_ms, fixed_grid.dims.x,
           fixed_grid.dims.y, fixed_grid.dims.z,
