@@ -36,7 +36,6 @@ TEST_P(RenderingStability, EveryRowWithinItsBound) {
     EXPECT_EQ(r.name, c.name);
     EXPECT_TRUE(r.picture.empty()) << "no picture_dir, no pictures";
     EXPECT_TRUE(r.pass()) << row_text(r);
-    if (std::getenv("VOXR_STABILITY_PRINT")) fmt::print("{}\n", row_text(r));
   }
 }
 
