@@ -146,12 +146,12 @@ constexpr Bound kBounds[] = {
     {"multi-material/ball-figure", "voxel-two", Measure::kEventMismatch, 0.67, 0.32},  // 0.4414, 0.2133
     {"multi-material/ball-figure", "image-space", Measure::kImageRmse, 0.22, 0.22},  // 0.1428, 0.1433
     {"multi-material/ball-figure", "image-space", Measure::kEventMismatch, 0.86, 0.86},  // 0.7048, 0.7113
-    {"multi-material/touching", "voxel-multi", Measure::kImageRmse, 0.13, 0.098},  // 0.08535, 0.06488
-    {"multi-material/touching", "voxel-multi", Measure::kEventMismatch, 0.76, 0.45},  // 0.5131, 0.2935
-    {"multi-material/touching", "voxel-two", Measure::kImageRmse, 0.14, 0.12},  // 0.088, 0.07927
-    {"multi-material/touching", "voxel-two", Measure::kEventMismatch, 0.85, 0.8},  // 0.6839, 0.5888
-    {"multi-material/touching", "image-space", Measure::kImageRmse, 0.12, 0.12},  // 0.07874, 0.07905
-    {"multi-material/touching", "image-space", Measure::kEventMismatch, 0.86, 0.85},  // 0.702, 0.6944
+    {"multi-material/touching", "voxel-multi", Measure::kImageRmse, 0.13, 0.093},  // 0.08273, 0.06191
+    {"multi-material/touching", "voxel-multi", Measure::kEventMismatch, 0.75, 0.41},  // 0.4946, 0.2708
+    {"multi-material/touching", "voxel-two", Measure::kImageRmse, 0.14, 0.12},  // 0.08879, 0.07993
+    {"multi-material/touching", "voxel-two", Measure::kEventMismatch, 0.85, 0.8},  // 0.6831, 0.5883
+    {"multi-material/touching", "image-space", Measure::kImageRmse, 0.12, 0.12},  // 0.07695, 0.07772
+    {"multi-material/touching", "image-space", Measure::kEventMismatch, 0.84, 0.84},  // 0.673, 0.666
 };
 // clang-format on
 
@@ -376,7 +376,9 @@ constexpr std::string_view kBallFigureScene = R"({
   "environment": {"procedural": "checker"}
 })";
 
-// Two glass blocks of different index (1.5 and 1.8) sharing a face at x = 0.
+// Two glass blocks of different index (1.5 and 1.8) 0.002 apart, far under a voxel: their boundary voxels
+// hold both materials. Not quite touching: at coincident faces the reference would drop one of the two
+// interfaces (it ignores hits within 1e-4 of the scene's size), so it crosses a thin air film instead.
 constexpr std::string_view kTouchingScene = R"({
   "materials": [
     {"name": "glass", "kind": "dielectric", "ior": 1.5, "absorption": [0.1, 0.1, 0.1]},
@@ -386,7 +388,7 @@ constexpr std::string_view kTouchingScene = R"({
   "meshes": [
     {"generator": "box", "params": {"lo": [-0.7, 0.3, -0.5], "hi": [0, 1.3, 0.5]}, "material": "glass",
      "transform": {"rotate_deg": [0, 25, 0]}},
-    {"generator": "box", "params": {"lo": [0, 0.3, -0.5], "hi": [0.7, 1.3, 0.5]}, "material": "flint",
+    {"generator": "box", "params": {"lo": [0.002, 0.3, -0.5], "hi": [0.702, 1.3, 0.5]}, "material": "flint",
      "transform": {"rotate_deg": [0, 25, 0]}},
     {"generator": "plane", "params": {"size": [8, 8], "subdivisions": 1}, "material": "floor"}
   ],
@@ -719,9 +721,9 @@ std::vector<StabilityCase> rendering_stability_cases() {
                                   "several materials on one path",
                                   kBallFigureScene));
   cases.push_back(refraction_case("multi-material/touching",
-                                  "Two glass blocks of index 1.5 and 1.8 sharing a face: the ray passes from "
-                                  "one dielectric straight into the other, where boundary voxels hold both "
-                                  "materials",
+                                  "Two glass blocks of index 1.5 and 1.8 side by side, 0.002 apart: the ray "
+                                  "passes from one dielectric into the other within one voxel, whose "
+                                  "boundary voxels hold both materials",
                                   kTouchingScene));
   return cases;
 }
