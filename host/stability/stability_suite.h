@@ -10,8 +10,8 @@
 
 namespace voxr {
 
-// Every case of the suite, the families in page order. The integrator adds rendering_stability_cases() and
-// temporal_stability_cases() here (the one list of the suite's families).
+// Every case of the suite, the families in page order (voxelization, rendering, inputs; temporal joins when
+// merged): the one list of the suite's families.
 std::vector<StabilityCase> all_stability_cases();
 
 struct StabilityCaseResult {

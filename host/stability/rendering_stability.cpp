@@ -1,0 +1,731 @@
+// The stability suite's rendering family (stability_case.h): one scene per failure mode of the shadow and
+// refraction methods, every device method on it, measured against the exact Embree references at the same
+// pixels (shadows: transmittance at the visible receivers, metrics/shadow_receivers.h; refraction: the
+// matched reference image and paths, metrics/refraction_metrics.h, each method's frame shaded with the exact
+// shadows so the error is refraction's alone).
+//
+// Bounds (kBounds) are 1.5x the value measured on PoCL (2-core CPU) when the bound was set, rounded up to
+// two significant digits, never below a floor that absorbs rounding between devices (0.005 for an RMSE or
+// a mean transmittance, 0.01 for a share of pixels); a share of pixels s gets min(1.5 s, (1 + s) / 2), so
+// that its bound stays below 1 where it can; measures that must be at least something are bounded by the
+// measured value / 1.5, rounded down. Hard bounds where physics says: no non-finite pixel, total internal
+// reflection present in the reference of the TIR scene.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/error.h"
+#include "core/scene.h"
+#include "io/image_file.h"
+#include "metrics/image_metrics.h"
+#include "metrics/refraction_metrics.h"
+#include "metrics/shadow_receivers.h"
+#include "reference/inward_distance.h"
+#include "reference/reference_refraction.h"
+#include "reference/reference_renderer.h"
+#include "reference/reference_scene.h"
+#include "render/environment_map.h"
+#include "render/frame_renderer.h"
+#include "render/render_scene.h"
+#include "render/shade_host.h"
+#include "render/vertex_normals.h"
+#include "stability/stability_case.h"
+
+namespace voxr {
+
+namespace {
+
+constexpr const char* kFamily = "rendering";
+
+// Image size and grids of the two versions: the small one the test suite runs, the full one of
+// `voxr bench stability`.
+struct Version {
+  uint32_t width, height;
+  uint32_t shadow_resolution;      // RenderOptions::shadow_resolution
+  uint32_t refraction_resolution;  // RefractionOptions::resolution
+};
+Version version(bool full) {
+  return full ? Version{640, 480, 256, 256} : Version{96, 72, 64, 64};
+}
+
+// ---- Bounds ----
+
+// Measures with a bound from a measurement (the key of kBounds).
+enum class Measure { kShadowRmse, kAcne, kLeak, kImageRmse, kEventMismatch, kTirFound };
+
+struct Bound {
+  std::string_view case_name, method;
+  Measure measure;
+  double small, full;  // the bound of each version
+};
+
+// Measured 2026-11-30 on PoCL (2-core CPU, shared: load 6-13); each line's comment holds the values measured
+// then, small version first.
+// clang-format off
+constexpr Bound kBounds[] = {
+    {"grazing-light/80", "voxel-center", Measure::kShadowRmse, 0.11, 0.094},  // 0.06735, 0.06224
+    {"grazing-light/80", "voxel-conservative", Measure::kShadowRmse, 0.33, 0.32},  // 0.2157, 0.2084
+    {"grazing-light/80", "uniform", Measure::kShadowRmse, 0.11, 0.085},  // 0.06726, 0.05607
+    {"grazing-light/80", "filter", Measure::kShadowRmse, 0.14, 0.14},  // 0.08711, 0.08997
+    {"grazing-light/80", "opaque", Measure::kShadowRmse, 0.13, 0.13},  // 0.08663, 0.08499
+    {"grazing-light/85", "voxel-center", Measure::kShadowRmse, 0.2, 0.19},  // 0.1277, 0.1263
+    {"grazing-light/85", "voxel-conservative", Measure::kShadowRmse, 0.51, 0.5},  // 0.3349, 0.3271
+    {"grazing-light/85", "uniform", Measure::kShadowRmse, 0.16, 0.14},  // 0.1008, 0.08831
+    {"grazing-light/85", "filter", Measure::kShadowRmse, 0.2, 0.2},  // 0.1321, 0.1322
+    {"grazing-light/85", "opaque", Measure::kShadowRmse, 0.21, 0.21},  // 0.1335, 0.134
+    {"grazing-light/88", "voxel-center", Measure::kShadowRmse, 0.22, 0.22},  // 0.144, 0.1447
+    {"grazing-light/88", "voxel-conservative", Measure::kShadowRmse, 0.49, 0.49},  // 0.3237, 0.3228
+    {"grazing-light/88", "uniform", Measure::kShadowRmse, 0.19, 0.17},  // 0.1214, 0.1069
+    {"grazing-light/88", "filter", Measure::kShadowRmse, 0.22, 0.23},  // 0.1439, 0.1467
+    {"grazing-light/88", "opaque", Measure::kShadowRmse, 0.23, 0.23},  // 0.1472, 0.1503
+    {"grazing-view", "voxel-center", Measure::kShadowRmse, 0.0071, 0.006},  // 0.004676, 0.003986
+    {"grazing-view", "voxel-conservative", Measure::kShadowRmse, 0.046, 0.036},  // 0.03038, 0.02381
+    {"grazing-view", "uniform", Measure::kShadowRmse, 0.023, 0.016},  // 0.01504, 0.01033
+    {"grazing-view", "filter", Measure::kShadowRmse, 0.13, 0.13},  // 0.08361, 0.08481
+    {"grazing-view", "opaque", Measure::kShadowRmse, 0.058, 0.05},  // 0.03805, 0.03291
+    {"receivers-among-casters", "voxel-center", Measure::kShadowRmse, 0.2, 0.11},  // 0.1275, 0.06905
+    {"receivers-among-casters", "voxel-conservative", Measure::kShadowRmse, 0.5, 0.35},  // 0.3305, 0.232
+    {"receivers-among-casters", "uniform", Measure::kShadowRmse, 0.2, 0.12},  // 0.1304, 0.07392
+    {"receivers-among-casters", "filter", Measure::kShadowRmse, 0.35, 0.37},  // 0.2331, 0.2404
+    {"receivers-among-casters", "opaque", Measure::kShadowRmse, 0.34, 0.31},  // 0.2249, 0.2049
+    {"sheet-self-shadowing", "voxel-center", Measure::kShadowRmse, 0.061, 0.029},  // 0.04016, 0.01884
+    {"sheet-self-shadowing", "voxel-center", Measure::kAcne, 0.005, 0.005},  // 0, 0
+    {"sheet-self-shadowing", "voxel-center", Measure::kLeak, 0.075, 0.012},  // 0.04954, 0.007841
+    {"sheet-self-shadowing", "voxel-conservative", Measure::kShadowRmse, 0.12, 0.075},  // 0.07505, 0.04938
+    {"sheet-self-shadowing", "voxel-conservative", Measure::kAcne, 0.005, 0.005},  // 1.009e-06, 7.249e-07
+    {"sheet-self-shadowing", "voxel-conservative", Measure::kLeak, 0.0059, 0.005},  // 0.003884, 0.0002077
+    {"sheet-self-shadowing", "uniform", Measure::kShadowRmse, 0.13, 0.11},  // 0.08194, 0.06845
+    {"sheet-self-shadowing", "uniform", Measure::kAcne, 0.005, 0.005},  // 0, 0
+    {"sheet-self-shadowing", "uniform", Measure::kLeak, 0.92, 0.85},  // 0.6098, 0.5664
+    {"sheet-self-shadowing", "filter", Measure::kShadowRmse, 0.29, 0.29},  // 0.1927, 0.1928
+    {"sheet-self-shadowing", "filter", Measure::kAcne, 0.7, 0.71},  // 0.4632, 0.4712
+    {"sheet-self-shadowing", "filter", Measure::kLeak, 0.075, 0.012},  // 0.04954, 0.007841
+    {"sheet-self-shadowing", "opaque", Measure::kShadowRmse, 0.16, 0.15},  // 0.101, 0.0969
+    {"sheet-self-shadowing", "opaque", Measure::kAcne, 0.005, 0.005},  // 6.915e-09, 5.62e-09
+    {"sheet-self-shadowing", "opaque", Measure::kLeak, 0.075, 0.012},  // 0.04954, 0.007841
+    {"total-internal-reflection", "voxel-multi", Measure::kImageRmse, 0.14, 0.14},  // 0.08702, 0.09264
+    {"total-internal-reflection", "voxel-multi", Measure::kEventMismatch, 0.57, 0.73},  // 0.375, 0.4862
+    {"total-internal-reflection", "voxel-multi", Measure::kTirFound, 0.44, 0.44},  // 0.6689, 0.6744
+    {"total-internal-reflection", "voxel-two", Measure::kImageRmse, 0.17, 0.17},  // 0.1091, 0.1133
+    {"total-internal-reflection", "voxel-two", Measure::kEventMismatch, 0.59, 0.71},  // 0.3878, 0.4721
+    {"total-internal-reflection", "voxel-two", Measure::kTirFound, 0.44, 0.44},  // 0.6689, 0.6744
+    {"total-internal-reflection", "image-space", Measure::kImageRmse, 0.16, 0.14},  // 0.1004, 0.09322
+    {"total-internal-reflection", "image-space", Measure::kEventMismatch, 0.6, 0.58},  // 0.398, 0.3842
+    {"total-internal-reflection", "image-space", Measure::kTirFound, 0.63, 0.66},  // 0.9522, 0.9924
+    {"nested-thin-shells", "voxel-multi", Measure::kImageRmse, 0.15, 0.15},  // 0.09877, 0.09626
+    {"nested-thin-shells", "voxel-multi", Measure::kEventMismatch, 1, 1},  // 0.9913, 0.9978
+    {"nested-thin-shells", "voxel-two", Measure::kImageRmse, 0.16, 0.15},  // 0.1001, 0.09777
+    {"nested-thin-shells", "voxel-two", Measure::kEventMismatch, 1, 1},  // 1, 1
+    {"nested-thin-shells", "image-space", Measure::kImageRmse, 0.18, 0.17},  // 0.1136, 0.1133
+    {"nested-thin-shells", "image-space", Measure::kEventMismatch, 1, 1},  // 1, 1
+    {"grazing-slab", "voxel-multi", Measure::kImageRmse, 0.14, 0.13},  // 0.09006, 0.08247
+    {"grazing-slab", "voxel-multi", Measure::kEventMismatch, 0.59, 0.43},  // 0.3925, 0.2803
+    {"grazing-slab", "voxel-two", Measure::kImageRmse, 0.15, 0.16},  // 0.09848, 0.1066
+    {"grazing-slab", "voxel-two", Measure::kEventMismatch, 0.57, 0.46},  // 0.3737, 0.3039
+    {"grazing-slab", "image-space", Measure::kImageRmse, 0.16, 0.16},  // 0.1038, 0.1046
+    {"grazing-slab", "image-space", Measure::kEventMismatch, 0.46, 0.46},  // 0.302, 0.3029
+    {"voxel-corners", "voxel-multi", Measure::kImageRmse, 0.047, 0.069},  // 0.0307, 0.04571
+    {"voxel-corners", "voxel-multi", Measure::kEventMismatch, 0.58, 0.2},  // 0.382, 0.1272
+    {"voxel-corners", "voxel-two", Measure::kImageRmse, 0.048, 0.07},  // 0.03154, 0.04624
+    {"voxel-corners", "voxel-two", Measure::kEventMismatch, 0.76, 0.57},  // 0.5065, 0.3752
+    {"voxel-corners", "image-space", Measure::kImageRmse, 0.02, 0.02},  // 0.01296, 0.01287
+    {"voxel-corners", "image-space", Measure::kEventMismatch, 0.54, 0.51},  // 0.355, 0.3361
+    {"multi-material/ball-figure", "voxel-multi", Measure::kImageRmse, 0.15, 0.091},  // 0.0972, 0.06029
+    {"multi-material/ball-figure", "voxel-multi", Measure::kEventMismatch, 0.59, 0.3},  // 0.3929, 0.1942
+    {"multi-material/ball-figure", "voxel-two", Measure::kImageRmse, 0.15, 0.089},  // 0.09725, 0.05875
+    {"multi-material/ball-figure", "voxel-two", Measure::kEventMismatch, 0.67, 0.32},  // 0.4414, 0.2133
+    {"multi-material/ball-figure", "image-space", Measure::kImageRmse, 0.22, 0.22},  // 0.1428, 0.1433
+    {"multi-material/ball-figure", "image-space", Measure::kEventMismatch, 0.86, 0.86},  // 0.7048, 0.7113
+    {"multi-material/touching", "voxel-multi", Measure::kImageRmse, 0.13, 0.093},  // 0.08273, 0.06191
+    {"multi-material/touching", "voxel-multi", Measure::kEventMismatch, 0.75, 0.41},  // 0.4946, 0.2708
+    {"multi-material/touching", "voxel-two", Measure::kImageRmse, 0.14, 0.12},  // 0.08879, 0.07993
+    {"multi-material/touching", "voxel-two", Measure::kEventMismatch, 0.85, 0.8},  // 0.6831, 0.5883
+    {"multi-material/touching", "image-space", Measure::kImageRmse, 0.12, 0.12},  // 0.07695, 0.07772
+    {"multi-material/touching", "image-space", Measure::kEventMismatch, 0.84, 0.84},  // 0.673, 0.666
+};
+// clang-format on
+
+// The bound of `measure` for `method` on case `name`; a method without one (added after the bounds were
+// measured) gets the case's loosest bound of that measure over the other methods, and says so in `note`.
+double bound_of(std::string_view name, std::string_view method, Measure measure, bool full, bool at_least,
+                std::string& note) {
+  std::optional<double> loosest;
+  for (const Bound& b : kBounds) {
+    if (b.case_name != name || b.measure != measure) continue;
+    const double v = full ? b.full : b.small;
+    if (b.method == method) return v;
+    loosest = !loosest ? v : at_least ? std::min(*loosest, v) : std::max(*loosest, v);
+  }
+  if (!loosest) fail("rendering_stability.cpp: no bound for {} on case {}", method, name);
+  note += note.empty() ? "" : "; ";
+  note += "no bound measured for this method: the case's loosest";
+  return *loosest;
+}
+
+StabilityRow row(const std::string& name, const std::string& method, const std::string& measure, double value,
+                 double bound, bool at_least, std::string note) {
+  StabilityRow r;
+  r.family = kFamily;
+  r.name = name;
+  r.method = method;
+  r.measure = measure;
+  r.value = value;
+  r.bound = bound;
+  r.at_least = at_least;
+  r.note = std::move(note);
+  return r;
+}
+
+StabilityRow measured_row(const std::string& name, const std::string& method, const std::string& measure,
+                          Measure key, double value, bool full, std::string note, bool at_least = false) {
+  const double bound = bound_of(name, method, key, full, at_least, note);
+  // NaN never passes: value <= bound and value >= bound are both false.
+  return row(name, method, measure, value, bound, at_least, std::move(note));
+}
+
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// ---- Scenes ----
+
+// A scene built from scene-format JSON (core/scene.h), with everything a renderer and the references need.
+struct StabilityScene {
+  Scene scene;
+  TriangleSoup soup;
+  EnvironmentMap environment;
+  CameraFrame camera;
+  RenderLight light;
+  std::vector<RenderMaterial> materials;
+};
+
+// `json` is a scene file's text; `edit` may change the parsed scene (the light's angle) before it is
+// placed. Throws voxr::Error from parse_scene.
+StabilityScene make_scene(const std::string& name, std::string_view json, const Version& v,
+                          const std::function<void(Scene&)>& edit = {}) {
+  StabilityScene s;
+  s.scene = parse_scene(json, "stability case " + name, ".");
+  if (edit) edit(s.scene);
+  s.soup = take_scene_triangles(s.scene);
+  validate_soup(s.soup, s.scene.source);
+  s.environment = make_environment_map(s.scene.environment);
+  s.camera = make_camera_frame(s.scene.camera, s.soup.anchor, s.soup.bounds(), v.width, v.height);
+  s.light = render_light(s.scene.light, s.environment.mean(), s.soup.anchor);
+  s.materials = render_materials(s.scene.materials);
+  return s;
+}
+
+// A floor (opaque), a low opaque box and a leaf (sheet) casting onto it: the grazing cases' scene.
+constexpr std::string_view kGrazingScene = R"({
+  "materials": [
+    {"name": "floor", "kind": "opaque", "color": [0.75, 0.75, 0.72]},
+    {"name": "stone", "kind": "opaque", "color": [0.6, 0.6, 0.65]},
+    {"name": "leaf", "kind": "sheet", "color": [0.35, 0.6, 0.2], "transmittance": [0.5, 0.75, 0.4]}
+  ],
+  "meshes": [
+    {"generator": "plane", "params": {"size": [6, 6], "subdivisions": 1}, "material": "floor"},
+    {"generator": "box", "params": {"lo": [-0.15, 0, -0.15], "hi": [0.15, 0.2, 0.15]}, "material": "stone",
+     "transform": {"rotate_deg": [0, 20, 0], "translate": [-1.2, 0, -0.4]}},
+    {"generator": "plane", "params": {"size": [0.5, 0.5], "subdivisions": 1}, "material": "leaf",
+     "transform": {"rotate_deg": [25, 10, 0], "translate": [-1.0, 0.2, 0.5]}}
+  ],
+  "light": {"type": "directional", "direction": [0.7, -0.7, 0], "intensity": [1.2, 1.2, 1.2]},
+  "camera": {"position": [0.5, 3.0, 3.5], "look_at": [0.5, 0, 0], "fov_deg": 45, "width": 640,
+             "height": 480},
+  "environment": {"color": [0.3, 0.35, 0.4]}
+})";
+
+// The foliage scene's block of leaves with an opaque ball and box among them (data/scenes/foliage.json).
+constexpr std::string_view kFoliageScene = R"({
+  "materials": [
+    {"name": "leaf", "kind": "sheet", "color": [0.35, 0.6, 0.2], "transmittance": [0.5, 0.75, 0.4]},
+    {"name": "clay", "kind": "opaque", "color": [0.8, 0.35, 0.2]},
+    {"name": "stone", "kind": "opaque", "color": [0.6, 0.6, 0.65]},
+    {"name": "floor", "kind": "opaque", "color": [0.75, 0.75, 0.72]}
+  ],
+  "meshes": [
+    {"generator": "plane", "params": {"size": [8, 8], "subdivisions": 1}, "material": "floor"},
+    {"generator": "foliage", "params": {"size": [3, 1.2, 3], "density": 300, "leaf_size": 0.12, "seed": 3},
+     "material": "leaf", "transform": {"translate": [0, 1.2, 0]}},
+    {"generator": "sphere", "params": {"radius": 0.3, "stacks": 16, "slices": 32}, "material": "clay",
+     "transform": {"translate": [0.4, 1.2, 0.3]}},
+    {"generator": "box", "params": {"lo": [-0.25, -0.25, -0.25], "hi": [0.25, 0.25, 0.25]},
+     "material": "stone", "transform": {"rotate_deg": [0, 30, 0], "translate": [-0.7, 1.0, -0.5]}}
+  ],
+  "light": {"type": "directional", "direction": [-0.35, -1, -0.25], "intensity": [1.4, 1.4, 1.4]},
+  "camera": {"position": [0, 2.6, 5.5], "look_at": [0, 1.0, 0], "fov_deg": 45, "width": 640, "height": 480},
+  "environment": {"color": [0.3, 0.35, 0.4]}
+})";
+
+// A lit leaf (sheet) facing the light and the camera, and a closed opaque slab 0.04 thick (under one voxel
+// of the small version's light grid) over the floor.
+constexpr std::string_view kSheetScene = R"({
+  "materials": [
+    {"name": "floor", "kind": "opaque", "color": [0.75, 0.75, 0.72]},
+    {"name": "leaf", "kind": "sheet", "color": [0.35, 0.6, 0.2], "transmittance": [0.5, 0.75, 0.4]},
+    {"name": "stone", "kind": "opaque", "color": [0.6, 0.6, 0.65]}
+  ],
+  "meshes": [
+    {"generator": "plane", "params": {"size": [5, 5], "subdivisions": 1}, "material": "floor"},
+    {"generator": "plane", "params": {"size": [1.4, 1.4], "subdivisions": 1}, "material": "leaf",
+     "transform": {"rotate_deg": [50, 0, 0], "translate": [-0.9, 0.9, 0]}},
+    {"generator": "box", "params": {"lo": [-0.6, -0.02, -0.6], "hi": [0.6, 0.02, 0.6]}, "material": "stone",
+     "transform": {"rotate_deg": [0, 15, 0], "translate": [1.0, 0.7, 0]}}
+  ],
+  "light": {"type": "directional", "direction": [0.2, -1, -0.6], "intensity": [1.2, 1.2, 1.2]},
+  "camera": {"position": [0, 2.8, 4.0], "look_at": [0, 0.4, 0], "fov_deg": 45, "width": 640, "height": 480},
+  "environment": {"color": [0.3, 0.35, 0.4]}
+})";
+
+// data/scenes/gem.json: a faceted gem of IOR 2.42 (diamond) on a floor.
+constexpr std::string_view kGemScene = R"({
+  "materials": [
+    {"name": "diamond", "kind": "dielectric", "ior": 2.42, "absorption": [0.02, 0.02, 0.02]},
+    {"name": "floor", "kind": "opaque", "color": [0.6, 0.58, 0.55]}
+  ],
+  "meshes": [
+    {"generator": "sphere", "params": {"radius": 1.0, "stacks": 4, "slices": 8}, "material": "diamond",
+     "transform": {"scale": [1.0, 0.7, 1.0], "rotate_deg": [0, 11, 0], "translate": [0, 0.8, 0]}},
+    {"generator": "plane", "params": {"size": [8, 8], "subdivisions": 1}, "material": "floor"}
+  ],
+  "light": {"type": "directional", "direction": [-0.4, -1, -0.5], "intensity": [0.8, 0.8, 0.8]},
+  "camera": {"position": [0, 2.0, 3.6], "look_at": [0, 0.75, 0], "fov_deg": 40, "width": 640, "height": 480},
+  "environment": {"procedural": "checker"}
+})";
+
+// data/scenes/thin-shell.json: glass walls 0.03 thick, nested spheres: two boundaries within a voxel.
+constexpr std::string_view kThinShellScene = R"({
+  "materials": [
+    {"name": "glass", "kind": "dielectric", "ior": 1.5, "absorption": [0.4, 0.2, 0.1]},
+    {"name": "floor", "kind": "opaque", "color": [0.6, 0.58, 0.55]}
+  ],
+  "meshes": [
+    {"generator": "sphere", "params": {"radius": 1.0, "stacks": 48, "slices": 96}, "material": "glass",
+     "transform": {"translate": [0, 1.05, 0]}},
+    {"generator": "sphere", "params": {"radius": 0.97, "stacks": 48, "slices": 96}, "material": "glass",
+     "transform": {"translate": [0, 1.05, 0]}},
+    {"generator": "plane", "params": {"size": [8, 8], "subdivisions": 1}, "material": "floor"}
+  ],
+  "light": {"type": "directional", "direction": [-0.4, -1, -0.5], "intensity": [0.8, 0.8, 0.8]},
+  "camera": {"position": [0, 1.6, 4.8], "look_at": [0, 1.0, 0], "fov_deg": 40, "width": 640, "height": 480},
+  "environment": {"procedural": "checker"}
+})";
+
+// A glass slab 0.12 thick seen at 8 degrees from its plane: rays run along its faces through many boundary
+// voxels.
+constexpr std::string_view kGrazingSlabScene = R"({
+  "materials": [
+    {"name": "glass", "kind": "dielectric", "ior": 1.5, "absorption": [0.2, 0.1, 0.05]},
+    {"name": "floor", "kind": "opaque", "color": [0.6, 0.58, 0.55]}
+  ],
+  "meshes": [
+    {"generator": "box", "params": {"lo": [-1.5, 0.4, -1.5], "hi": [1.5, 0.52, 1.5]}, "material": "glass"},
+    {"generator": "plane", "params": {"size": [8, 8], "subdivisions": 1}, "material": "floor"}
+  ],
+  "light": {"type": "directional", "direction": [-0.4, -1, -0.5], "intensity": [0.8, 0.8, 0.8]},
+  "camera": {"position": [0, 0.95, 3.2], "look_at": [0, 0.46, 0], "fov_deg": 30, "width": 640, "height": 480},
+  "environment": {"procedural": "checker"}
+})";
+
+// A glass cube rotated 45 degrees about X and about Y, seen along the grid's diagonal (1, 1, 1): its edges
+// and corners cut voxels at their corners, where a fixed step slips past.
+constexpr std::string_view kCornerScene = R"({
+  "materials": [
+    {"name": "glass", "kind": "dielectric", "ior": 1.5, "absorption": [0.2, 0.1, 0.05]},
+    {"name": "floor", "kind": "opaque", "color": [0.6, 0.58, 0.55]}
+  ],
+  "meshes": [
+    {"generator": "box", "params": {"lo": [-0.5, -0.5, -0.5], "hi": [0.5, 0.5, 0.5]}, "material": "glass",
+     "transform": {"rotate_deg": [45, 45, 0], "translate": [0, 1.0, 0]}},
+    {"generator": "plane", "params": {"size": [6, 6], "subdivisions": 1}, "material": "floor"}
+  ],
+  "light": {"type": "directional", "direction": [-0.4, -1, -0.5], "intensity": [0.8, 0.8, 0.8]},
+  "camera": {"position": [2.2, 3.2, 2.2], "look_at": [0, 1.0, 0], "fov_deg": 40, "width": 640, "height": 480},
+  "environment": {"procedural": "checker"}
+})";
+
+// data/scenes/ball-figure.json: a glass ball holding an opaque torus and an amber glass sphere.
+constexpr std::string_view kBallFigureScene = R"({
+  "materials": [
+    {"name": "glass", "kind": "dielectric", "ior": 1.5, "absorption": [0.05, 0.05, 0.05]},
+    {"name": "amber", "kind": "dielectric", "ior": 1.6, "absorption": [0.3, 1.5, 4.0]},
+    {"name": "red", "kind": "opaque", "color": [0.85, 0.15, 0.1]},
+    {"name": "floor", "kind": "opaque", "color": [0.6, 0.58, 0.55]}
+  ],
+  "meshes": [
+    {"generator": "sphere", "params": {"radius": 1.0, "stacks": 48, "slices": 96}, "material": "glass",
+     "transform": {"translate": [0, 1.05, 0]}},
+    {"generator": "torus", "params": {"major": 0.45, "minor": 0.14, "rings": 32, "sides": 16},
+     "material": "red", "transform": {"rotate_deg": [70, 20, 0], "translate": [-0.1, 1.05, -0.1]}},
+    {"generator": "sphere", "params": {"radius": 0.22, "stacks": 16, "slices": 32}, "material": "amber",
+     "transform": {"translate": [0.35, 1.35, 0.3]}},
+    {"generator": "plane", "params": {"size": [8, 8], "subdivisions": 1}, "material": "floor"}
+  ],
+  "light": {"type": "directional", "direction": [-0.4, -1, -0.5], "intensity": [0.8, 0.8, 0.8]},
+  "camera": {"position": [0, 1.6, 4.8], "look_at": [0, 1.0, 0], "fov_deg": 40, "width": 640, "height": 480},
+  "environment": {"procedural": "checker"}
+})";
+
+// Two glass blocks of different index (1.5 and 1.8) 0.002 apart, far under a voxel: their boundary voxels
+// hold both materials. Not quite touching: at coincident faces the reference would drop one of the two
+// interfaces (it ignores hits within 1e-4 of the scene's size), so it crosses a thin air film instead.
+constexpr std::string_view kTouchingScene = R"({
+  "materials": [
+    {"name": "glass", "kind": "dielectric", "ior": 1.5, "absorption": [0.1, 0.1, 0.1]},
+    {"name": "flint", "kind": "dielectric", "ior": 1.8, "absorption": [0.4, 0.2, 0.05]},
+    {"name": "floor", "kind": "opaque", "color": [0.6, 0.58, 0.55]}
+  ],
+  "meshes": [
+    {"generator": "box", "params": {"lo": [-0.7, 0.3, -0.5], "hi": [0, 1.3, 0.5]}, "material": "glass",
+     "transform": {"rotate_deg": [0, 25, 0]}},
+    {"generator": "box", "params": {"lo": [0.002, 0.3, -0.5], "hi": [0.702, 1.3, 0.5]}, "material": "flint",
+     "transform": {"rotate_deg": [0, 25, 0]}},
+    {"generator": "plane", "params": {"size": [8, 8], "subdivisions": 1}, "material": "floor"}
+  ],
+  "light": {"type": "directional", "direction": [-0.4, -1, -0.5], "intensity": [0.8, 0.8, 0.8]},
+  "camera": {"position": [0.4, 1.9, 3.6], "look_at": [0, 0.8, 0], "fov_deg": 40, "width": 640, "height": 480},
+  "environment": {"procedural": "checker"}
+})";
+
+// ---- Pictures ----
+
+// `image` shrunk by an integer factor (box filter) so that it is at most `max_width` wide.
+ImageRgba shrink(const ImageRgba& image, uint32_t max_width) {
+  const uint32_t f = std::max(1u, (image.width + max_width - 1) / max_width);
+  ImageRgba out(image.width / f, image.height / f);
+  for (uint32_t y = 0; y < out.height; ++y)
+    for (uint32_t x = 0; x < out.width; ++x) {
+      glm::vec4 sum(0.0f);
+      for (uint32_t dy = 0; dy < f; ++dy)
+        for (uint32_t dx = 0; dx < f; ++dx) sum += image.at(x * f + dx, y * f + dy);
+      out.at(x, y) = sum / float(f * f);
+    }
+  return out;
+}
+
+// One row per method of three tiles: the method's image, the reference's, their difference (error_image:
+// the shadows' transmittance at full scale 1, the refraction images' at 0.25).
+class Picture {
+ public:
+  void add(const ImageRgba& method, const ImageRgba& reference, const ImageRgba& difference) {
+    rows_.push_back({shrink(method, kTile), shrink(reference, kTile), shrink(difference, kTile)});
+  }
+
+  // Writes the picture as `dir`/rendering-`name`.png ('/' in the name becomes '-') and returns the path
+  // relative to `dir`; nothing (empty) when `dir` is empty or there are no rows.
+  std::string write(const std::filesystem::path& dir, const std::string& name) const {
+    if (dir.empty() || rows_.empty()) return {};
+    std::string file = "rendering-" + name + ".png";
+    std::replace(file.begin(), file.end(), '/', '-');
+    const uint32_t w = rows_[0][0].width, h = rows_[0][0].height;
+    ImageRgba out(3 * w + 2 * kGap, uint32_t(rows_.size()) * (h + kGap) - kGap, glm::vec4(1.0f));
+    for (size_t r = 0; r < rows_.size(); ++r)
+      for (uint32_t t = 0; t < 3; ++t)
+        for (uint32_t y = 0; y < h; ++y)
+          for (uint32_t x = 0; x < w; ++x)
+            out.at(t * (w + kGap) + x, uint32_t(r) * (h + kGap) + y) =
+                glm::vec4(glm::vec3(rows_[r][t].at(x, y)), 1.0f);
+    write_image(out, dir / file);
+    return file;
+  }
+
+ private:
+  static constexpr uint32_t kTile = 160, kGap = 4;
+  std::vector<std::array<ImageRgba, 3>> rows_;
+};
+
+void set_picture(std::vector<StabilityRow>& rows, const std::string& file) {
+  for (StabilityRow& r : rows) r.picture = file;
+}
+
+// ---- Shadows ----
+
+struct ShadowCase {
+  std::string label;  // voxel-center, voxel-conservative, uniform, filter, opaque
+  ShadowMethod method;
+  RasterMode mode;
+};
+
+// Every device shadow method of kShadowMethods (the voxel one in both raster modes).
+std::vector<ShadowCase> shadow_methods() {
+  std::vector<ShadowCase> out;
+  for (const ShadowMethodInfo& info : kShadowMethods) {
+    if (info.value == ShadowMethod::kReference || info.value == ShadowMethod::kNone) continue;
+    if (info.value == ShadowMethod::kVoxel) {
+      out.push_back({"voxel-center", info.value, RasterMode::kCenter});
+      out.push_back({"voxel-conservative", info.value, RasterMode::kConservative});
+    } else {
+      out.push_back({std::string(info.name), info.value, RasterMode::kCenter});
+    }
+  }
+  return out;
+}
+
+// What the sheet case measures besides the transmittance RMSE over every receiver.
+enum class SheetMeasures { kNone, kAcneAndLeaks };
+
+// Every shadow method on `s`: transmittance RMSE over the visible receivers against Embree's exact
+// transmittance at the same samples, non-finite pixels (image or transmittance; must be 0), and for the
+// sheet case acne (transmittance RMSE over the receivers on the lit leaf, exactly lit there) and leaks (the
+// mean transmittance, largest channel, of floor receivers the exact shadow leaves fully dark).
+std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::string& name,
+                                          const StabilityScene& s, SheetMeasures sheet) {
+  const Version v = version(ctx.full);
+  FrameRenderer renderer(ctx.cl);
+  renderer.set_scene(s.soup, s.scene.materials);
+  RenderOptions base;
+  base.shadows = ShadowMethod::kNone;
+  base.keep_samples = true;
+  renderer.prepare(base);
+  const RenderedFrame primary = renderer.render(s.light, s.camera, base);
+  const ReferenceScene reference(s.soup, s.scene.materials);
+  const std::vector<glm::vec3> exact = reference_transmittance(reference, s.light, primary.samples);
+  const ImageRgba exact_image =
+      shade_samples(primary.samples, exact, s.materials, s.light, v.width, v.height);
+  const std::vector<uint8_t> mask = shadow_receivers(primary.samples, s.materials, s.light);
+  const uint64_t receivers = uint64_t(std::count(mask.begin(), mask.end(), uint8_t(1)));
+  if (receivers == 0) fail("rendering_stability.cpp: case {} has no visible receiver", name);
+  // The sheet case's two regions.
+  std::vector<uint8_t> leaf(mask.size(), 0), dark(mask.size(), 0);
+  if (sheet == SheetMeasures::kAcneAndLeaks) {
+    for (size_t i = 0; i < mask.size(); ++i) {
+      const uint32_t m = primary.samples[i].material;
+      leaf[i] = mask[i] && s.scene.materials[m].kind == MaterialKind::kSheet;
+      const float e = std::max(exact[i].x, std::max(exact[i].y, exact[i].z));
+      dark[i] = mask[i] && s.scene.materials[m].kind == MaterialKind::kOpaque && e == 0.0f;
+    }
+    if (std::count(leaf.begin(), leaf.end(), uint8_t(1)) == 0 ||
+        std::count(dark.begin(), dark.end(), uint8_t(1)) == 0)
+      fail("rendering_stability.cpp: case {} shows no lit leaf or no fully shadowed floor", name);
+  }
+
+  std::vector<StabilityRow> rows;
+  Picture picture;
+  for (const ShadowCase& m : shadow_methods()) {
+    RenderOptions o;
+    o.shadows = m.method;
+    o.mode = m.mode;
+    o.shadow_resolution = v.shadow_resolution;
+    o.keep_samples = true;
+    renderer.prepare(o);
+    const RenderedFrame frame = renderer.render(s.light, s.camera, o);
+    const TransmittanceError e = transmittance_error(frame.transmittance, exact, mask, 0.05);
+    rows.push_back(measured_row(
+        name, m.label, "transmittance RMSE over visible receivers", Measure::kShadowRmse, e.rmse, ctx.full,
+        fmt::format("{} receivers, {:.1f}% off by > 0.05", e.receivers, 100.0 * e.share_over_threshold)));
+    uint64_t nonfinite = 0;
+    for (size_t i = 0; i < frame.image.pixels.size(); ++i)
+      nonfinite += !finite(glm::vec3(frame.image.pixels[i])) || !finite(frame.transmittance[i]);
+    rows.push_back(row(name, m.label, "non-finite pixels", double(nonfinite), 0.0, false,
+                       "image or transmittance NaN or infinite"));
+    if (sheet == SheetMeasures::kAcneAndLeaks) {
+      const TransmittanceError acne = transmittance_error(frame.transmittance, exact, leaf, 0.05);
+      rows.push_back(measured_row(name, m.label, "acne: transmittance RMSE on the lit leaf", Measure::kAcne,
+                                  acne.rmse, ctx.full,
+                                  fmt::format("{} leaf receivers, {:.1f}% darkened by > 0.05", acne.receivers,
+                                              100.0 * acne.share_over_threshold)));
+      double leaked = 0.0;
+      uint64_t count = 0;
+      for (size_t i = 0; i < dark.size(); ++i)
+        if (dark[i]) {
+          const glm::vec3 t = frame.transmittance[i];
+          leaked += std::max(t.x, std::max(t.y, t.z));
+          ++count;
+        }
+      rows.push_back(measured_row(name, m.label, "leak: mean transmittance under the closed slab",
+                                  Measure::kLeak, leaked / double(count), ctx.full,
+                                  fmt::format("{} floor receivers exactly in the slab's shadow", count)));
+    }
+    picture.add(frame.image, exact_image,
+                error_image(frame.transmittance, exact, v.width, v.height, mask, 1.0));
+  }
+  set_picture(rows, picture.write(ctx.picture_dir, name));
+  return rows;
+}
+
+// The light travelling at `degrees` from the receiver plane's normal (+y), along +x.
+std::function<void(Scene&)> light_from_normal(double degrees) {
+  return [degrees](Scene& scene) {
+    const double r = degrees * std::numbers::pi / 180.0;
+    scene.light.direction = glm::vec3(float(std::sin(r)), float(-std::cos(r)), 0.0f);
+  };
+}
+
+StabilityCase shadow_case(std::string name, std::string description, std::string_view json,
+                          std::function<void(Scene&)> edit = {}, SheetMeasures sheet = SheetMeasures::kNone) {
+  StabilityCase c;
+  c.family = kFamily;
+  c.name = name;
+  c.description = std::move(description);
+  c.run = [name, json, edit, sheet](StabilityContext& ctx) {
+    return run_shadow_case(ctx, name, make_scene(name, json, version(ctx.full), edit), sheet);
+  };
+  return c;
+}
+
+// ---- Refraction ----
+
+// Every device refraction method of kRefractionMethods, with its defaults.
+std::vector<RefractionMethodInfo> refraction_methods() {
+  std::vector<RefractionMethodInfo> out;
+  for (const RefractionMethodInfo& info : kRefractionMethods)
+    if (!is_reference_refraction(info.value) && info.value != RefractionMethod::kNone) out.push_back(info);
+  return out;
+}
+
+uint64_t tir_pixels(std::span<const RefractionPath> paths) {
+  return uint64_t(std::count_if(paths.begin(), paths.end(),
+                                [](const RefractionPath& p) { return p.events & VOXR_PATH_TIR; }));
+}
+
+// Every refraction method on `s`, each frame with the exact shadows at its path ends: image RMSE and event
+// mismatch share against the matched reference, non-finite pixels (must be 0); with `tir`, whether the
+// reference has total internal reflection (hard: at least one pixel) and the share of the reference's TIR
+// pixels where the method's path reflects totally too.
+std::vector<StabilityRow> run_refraction_case(StabilityContext& ctx, const std::string& name,
+                                              const StabilityScene& s, bool tir) {
+  const Version v = version(ctx.full);
+  const ReferenceScene reference(s.soup, s.scene.materials);
+  const RefractionReference exact = render_refraction_reference(
+      reference, s.materials, s.light, s.environment, s.camera, ReferenceModel::kMatched);
+  std::vector<StabilityRow> rows;
+  const uint64_t reference_tir = tir_pixels(exact.paths);
+  if (tir)
+    rows.push_back(row(name, "reference", "pixels with total internal reflection", double(reference_tir), 1.0,
+                       true, "the matched reference's paths: the scene shows TIR"));
+  FrameRenderer renderer(ctx.cl);
+  renderer.set_scene(s.soup, s.scene.materials);
+  renderer.set_environment(s.environment);
+  renderer.set_inward_distances(
+      inward_distances(reference, s.soup, s.scene.materials, vertex_normals(s.soup)));
+  const HostTransmittance exact_shadows = [&](std::span<const SurfaceSample> samples) {
+    return reference_transmittance(reference, s.light, samples);
+  };
+  Picture picture;
+  for (const RefractionMethodInfo& m : refraction_methods()) {
+    const std::string method(m.name);
+    RenderOptions o;
+    o.shadows = ShadowMethod::kReference;
+    o.refraction.method = m.value;
+    o.refraction.resolution = v.refraction_resolution;
+    o.keep_samples = true;
+    RenderedFrame frame;
+    try {
+      renderer.prepare(o);
+      frame = renderer.render(s.light, s.camera, o, exact_shadows);
+    } catch (const Error& e) {
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      rows.push_back(row(name, method, "image RMSE vs matched reference", nan, 0.0, false, e.what()));
+      continue;
+    }
+    const RefractionError e = refraction_error(frame.image, frame.paths, exact.image, exact.paths);
+    rows.push_back(measured_row(name, method, "image RMSE vs matched reference", Measure::kImageRmse, e.rmse,
+                                ctx.full, fmt::format("PSNR {:.1f} dB", e.psnr)));
+    rows.push_back(measured_row(name, method, "event mismatch share of refracted pixels",
+                                Measure::kEventMismatch, e.event_mismatch_share, ctx.full,
+                                fmt::format("{} refracted pixels", e.refracted_pixels)));
+    rows.push_back(row(name, method, "non-finite pixels", double(e.nonfinite_pixels), 0.0, false,
+                       "image NaN or infinite"));
+    if (tir) {
+      uint64_t both = 0;
+      for (size_t i = 0; i < exact.paths.size(); ++i)
+        both += (exact.paths[i].events & VOXR_PATH_TIR) && (frame.paths[i].events & VOXR_PATH_TIR);
+      const double found = reference_tir ? double(both) / double(reference_tir) : 0.0;
+      rows.push_back(measured_row(name, method, "TIR found: share of the reference's TIR pixels",
+                                  Measure::kTirFound, found, ctx.full,
+                                  fmt::format("{} of {}; the method has TIR at {} pixels", both,
+                                              reference_tir, tir_pixels(frame.paths)),
+                                  true));
+    }
+    picture.add(frame.image, exact.image, error_image(frame.image, exact.image, 0.25));
+  }
+  set_picture(rows, picture.write(ctx.picture_dir, name));
+  return rows;
+}
+
+StabilityCase refraction_case(std::string name, std::string description, std::string_view json,
+                              bool tir = false) {
+  StabilityCase c;
+  c.family = kFamily;
+  c.name = name;
+  c.description = std::move(description);
+  c.run = [name, json, tir](StabilityContext& ctx) {
+    return run_refraction_case(ctx, name, make_scene(name, json, version(ctx.full)), tir);
+  };
+  return c;
+}
+
+}  // namespace
+
+std::vector<StabilityCase> rendering_stability_cases() {
+  std::vector<StabilityCase> cases;
+  for (int degrees : {80, 85, 88})
+    cases.push_back(shadow_case(
+        fmt::format("grazing-light/{}", degrees),
+        fmt::format("Light {} degrees from the receiver plane's normal: long shadows cross many light-grid "
+                    "columns per receiver and self-shadow acne grows with the slope (DESIGN.md: grazing "
+                    "angles)",
+                    degrees),
+        kGrazingScene, light_from_normal(degrees)));
+  cases.push_back(shadow_case(
+      "grazing-view",
+      "Camera 2.5 degrees above the receiver plane: one pixel spans a long stretch of floor, so the "
+      "light grid's coarseness shows along the view",
+      kGrazingScene, [](Scene& scene) {
+        scene.camera.position = glm::vec3(0.0f, 0.15f, 3.4f);
+        scene.camera.look_at = glm::vec3(0.0f, 0.0f, 0.0f);
+      }));
+  cases.push_back(shadow_case(
+      "receivers-among-casters",
+      "Receivers inside a block of leaves with opaque objects among them (foliage.json): each receiver's own "
+      "voxels and its neighbours' darken it, where a bias against acne lets light leak",
+      kFoliageScene));
+  cases.push_back(shadow_case(
+      "sheet-self-shadowing",
+      "A lit leaf darkened by its own voxels (acne) and light through a closed opaque slab 0.04 thick, under "
+      "one light-grid voxel in the small version (leaks): the two failures a shadow bias trades",
+      kSheetScene, {}, SheetMeasures::kAcneAndLeaks));
+  cases.push_back(refraction_case(
+      "total-internal-reflection",
+      "A faceted gem of IOR 2.42 (gem.json): most rays that enter reflect totally inside before "
+      "they leave; a method must find the reflection and follow the mirrored ray",
+      kGemScene, true));
+  cases.push_back(refraction_case("nested-thin-shells",
+                                  "A glass shell 0.03 thick (thin-shell.json): both walls' boundaries share "
+                                  "voxels along one ray, where a voxel march loses or merges interfaces "
+                                  "(Chang & Lai PG 2011's angle threshold)",
+                                  kThinShellScene));
+  cases.push_back(refraction_case(
+      "grazing-slab",
+      "A glass slab seen 8 degrees from its plane: rays run along its faces through long runs of boundary "
+      "voxels",
+      kGrazingSlabScene));
+  cases.push_back(refraction_case(
+      "voxel-corners",
+      "A glass cube rotated 45 degrees about two axes seen along the grid's diagonal: rays slip between "
+      "voxels that touch only at corners when the march steps a whole voxel (the papers' fixed step)",
+      kCornerScene));
+  cases.push_back(refraction_case("multi-material/ball-figure",
+                                  "A glass ball holding an opaque torus and an amber glass sphere "
+                                  "(ball-figure.json, after Chang & Lai PG 2011): "
+                                  "several materials on one path",
+                                  kBallFigureScene));
+  cases.push_back(refraction_case("multi-material/touching",
+                                  "Two glass blocks of index 1.5 and 1.8 side by side, 0.002 apart: the ray "
+                                  "passes from one dielectric into the other within one voxel, whose "
+                                  "boundary voxels hold both materials",
+                                  kTouchingScene));
+  return cases;
+}
+
+}  // namespace voxr
