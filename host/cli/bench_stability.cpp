@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include "cl/cl_runtime.h"
 #include "cli/bench_support.h"
 #include "cli/commands.h"
+#include "core/error.h"
 #include "io/atomic_file.h"
 #include "stability/stability_suite.h"
 
@@ -31,6 +33,7 @@ std::string utc_now() {
 std::string regenerate_command(const BenchStabilityArgs& args) {
   std::string command = "voxr bench stability";
   if (args.full) command += " --full";
+  for (const std::string& f : args.families) command += " --family " + f;
   command += " --doc " + args.doc;
   command += args.pictures.empty() ? " --pictures ''" : " --pictures " + args.pictures;
   return command;
@@ -56,7 +59,17 @@ int run_bench_stability(const BenchStabilityArgs& args) {
   const std::string device = fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name,
                                          cl.device().driver_version);
   fmt::print("device: {}\n", device);
-  const std::vector<StabilityCase> cases = all_stability_cases();
+  std::vector<StabilityCase> cases;
+  for (StabilityCase& c : all_stability_cases())
+    if (args.families.empty() ||
+        std::find(args.families.begin(), args.families.end(), c.family) != args.families.end())
+      cases.push_back(std::move(c));
+  for (const std::string& f : args.families)
+    if (std::none_of(cases.begin(), cases.end(), [&](const StabilityCase& c) { return c.family == f; }))
+      fail(
+          "--family: no case of family '{}' (families: voxelization, rendering, inputs, temporal when "
+          "merged)",
+          f);
   const std::vector<StabilityCaseResult> results = run_stability_cases(cases, ctx);
   const std::array<double, 3> load_after = load_averages();
   StabilityHeader header;
@@ -88,6 +101,8 @@ Command add_bench_stability(CLI::App& bench) {
       "stability",
       "The stability suite: every method on every failure mode, bounds checked -> docs/stability.md");
   sub->add_flag("--full", args->full, "the full cases (default: the small versions the tests run)");
+  sub->add_option("--family", args->families, "run these families only (voxelization, rendering, inputs)")
+      ->delimiter(',');
   sub->add_option("--doc", args->doc, "the Markdown page to write")->capture_default_str();
   sub->add_option("--pictures", args->pictures, "folder of the page's pictures ('' for none)")
       ->capture_default_str();
