@@ -37,6 +37,10 @@ struct InputCase {
   std::string obj;  // the file's text
   Expect expect;
   size_t degenerate = 0;  // zero-area triangles validate_soup must count (accepted inputs)
+  // Set: the triangles come from memory (a library caller, a generator) instead of the file, so the
+  // readers' own checks are bypassed and validate_soup is the one that must catch the problem.
+  float in_memory_vertex = 0.0f;
+  bool in_memory = false;
 };
 
 std::string box_obj(glm::dvec3 lo, glm::dvec3 hi) {
@@ -67,6 +71,17 @@ std::vector<InputCase> input_cases() {
   cases.push_back({"inf-vertex",
                    "A vertex with an infinite coordinate (1e39 overflows float): must be rejected.",
                    box_obj(glm::dvec3(0.0), glm::dvec3(1.0)) + "v 1e39 0 0\nf 1 2 9\n", Expect::kRejected});
+  for (const auto& [label, value] :
+       {std::pair<std::string, float>{"nan", std::numeric_limits<float>::quiet_NaN()},
+        std::pair<std::string, float>{"inf", std::numeric_limits<float>::infinity()}}) {
+    InputCase c{label + "-vertex-in-memory",
+                "A box built in memory with one vertex " + label +
+                    " (no reader to catch it): validate_soup must reject it.",
+                box_obj(glm::dvec3(0.0), glm::dvec3(1.0)), Expect::kRejected};
+    c.in_memory = true;
+    c.in_memory_vertex = value;
+    cases.push_back(c);
+  }
   cases.push_back({"point-sized", "Every vertex at the same point: a mesh of zero size.",
                    "v 0.25 0.5 0.75\nv 0.25 0.5 0.75\nv 0.25 0.5 0.75\nf 1 2 3\n", Expect::kEither});
   cases.push_back({"empty", "A file with vertices and no triangles: must be rejected.", "v 0 0 0\nv 1 0 0\n",
@@ -141,6 +156,11 @@ std::vector<StabilityRow> run_input(StabilityContext& ctx, const InputCase& c) {
   stage("load_input", "read the file", [&] {
     scene = load_input(file);
     soup = scene_triangles(scene);
+    if (c.in_memory) {
+      soup.positions[0].y = c.in_memory_vertex;
+      return fmt::format("{} triangles; vertex 0's y set to {} in memory", soup.triangle_count(),
+                         c.in_memory_vertex);
+    }
     return fmt::format("{} triangles", soup.triangle_count());
   });
   stage("validate_soup", "validate", [&] {
