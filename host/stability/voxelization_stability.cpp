@@ -5,7 +5,11 @@
 //     through the surface meeting no voxel, surface_accuracy.h; bound 0);
 //   centre methods (slice-center, slicemap-*): voxels differing from their own rule's CPU reference (bound 0:
 //     the holes are the rule's, not the kernels'), and the holes of the rule itself (tunnels, lost features),
-//     documented (Schwarz & Seidel 2010 §1; Eisemann & Decoret 2006 §3 name centre sampling's holes).
+//     documented (Schwarz & Seidel 2010 §1; Eisemann & Decoret 2006 §3 name centre sampling's holes);
+//   over random rotations: the spread (max - min) of the tunnel rate, of the voxel count against the exact
+//     set and of the two-sided surface distance (metrics/voxel_surface_error.h), bounded: a method's error
+//     must not depend on how the surface meets the grid (centre sampling's does: its bounds only catch a
+//     regression).
 #include <fmt/format.h>
 
 #include <algorithm>
