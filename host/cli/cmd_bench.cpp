@@ -1,6 +1,6 @@
 // voxr bench: voxelize (fresh process, job and frame figures: cli/bench_voxelize.h), table1 (the papers'
-// Table 1, every method), solid (the solid fill modes); shadows and refraction (cli/bench_shadows.h,
-// cli/bench_refraction.h) live in voxr-render.
+// Table 1, every method), solid (the solid fill modes); shadows, refraction and animation
+// (cli/bench_shadows.h, cli/bench_refraction.h, cli/bench_animation.h) live in voxr-render.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -171,9 +171,11 @@ Command add_bench(CLI::App& app) {
   so->add_option("--repeat", solid->options.repeat, "timed runs per case")->check(CLI::Range(1, 1000));
   const Command shadows = add_bench_shadows(*sub);
   const Command refraction = add_bench_refraction(*sub);
-  return {sub, [args, vox, table, t1, solid, so, shadows, refraction] {
+  const Command animation = add_bench_animation(*sub);
+  return {sub, [args, vox, table, t1, solid, so, shadows, refraction, animation] {
             if (shadows.app->parsed()) return shadows.run();
             if (refraction.app->parsed()) return refraction.run();
+            if (animation.app->parsed()) return animation.run();
             if (vox->parsed()) return run_bench_voxelize(*args);
             if (t1->parsed()) return run_bench_table1(*table);
             if (so->parsed()) return run_bench_solid(*solid);

@@ -1,6 +1,6 @@
 // What `voxr` (without VOXR_CLI_RENDER) registers for the rendering commands: their names and summaries for
-// --help. main.cpp hands every `voxr render`, `voxr bench shadows` and `voxr bench refraction` to voxr-render
-// before parsing, so these are never run.
+// --help. main.cpp hands every `voxr render`, `voxr bench shadows`, `voxr bench refraction` and
+// `voxr bench animation` to voxr-render before parsing, so these are never run.
 #include "cli/commands.h"
 #include "core/error.h"
 
@@ -31,6 +31,13 @@ Command add_bench_refraction(CLI::App& bench) {
   CLI::App* sub = bench.add_subcommand(
       "refraction",
       "Refraction methods x grid resolutions x scenes: frame time against error vs the matched reference");
+  sub->allow_extras();
+  return {sub, forwarded};
+}
+
+Command add_bench_animation(CLI::App& bench) {
+  CLI::App* sub = bench.add_subcommand(
+      "animation", "Deforming scenes re-voxelized every frame: frame rate, per-stage times, fresh process");
   sub->allow_extras();
   return {sub, forwarded};
 }
