@@ -124,16 +124,19 @@ int run_bench_animation(const BenchAnimationArgs& args) {
                        r.frame_max, 1000.0 / r.frame_ms, r.pose_ms, r.fresh_ms, stage_text(r.stages, "; "));
   std::ostringstream md;
   md << fmt::format(
-      "# voxr bench animation\n\n{}. Command: `voxr bench animation --frames {} --size {} --fresh {}{}`. "
+      "# voxr bench animation\n\n{}. Command: `voxr bench animation --frames {} --size {} --fresh {} --out "
+      "{}{}`. "
       "Device: {}. Load average (1, 5, 15 min) {:.2f} {:.2f} {:.2f} at the start, {:.2f} {:.2f} {:.2f} at "
       "the "
       "end.\n\n"
       "Every frame is posed at t = f / fps on the host and re-voxelized on the device (nothing precomputed): "
       "voxel shadows (centre mode, 256 columns), voxel-multi refraction (res 256) where the scene has glass. "
       "Frame: wall time of one frame, image read back; pose: host posing + upload (set_scene); stages: "
-      "profiled device ms, medians over the frames.\n\n",
-      started, args.frames, args.size, args.fresh, args.device.empty() ? "" : " --device " + args.device,
-      device, load_start[0], load_start[1], load_start[2], load_end[0], load_end[1], load_end[2]);
+      "profiled device ms, medians over the frames. The first frame grows the device buffers: it is usually "
+      "the max.\n\n",
+      started, args.frames, args.size, args.fresh, args.out,
+      args.device.empty() ? "" : " --device " + args.device, device, load_start[0], load_start[1],
+      load_start[2], load_end[0], load_end[1], load_end[2]);
   md << "| scene | triangles | refraction | frame ms | [min, max] | fps | pose ms | fresh process ms | "
         "stages "
         "ms (medians) |\n|---|---:|---|---:|---|---:|---:|---:|---|\n";
