@@ -415,14 +415,14 @@ int run_render(const RenderArgs& args) {
     if (animated) {
       std::vector<double> pose_ms;
       for (const nlohmann::json& f : frames) pose_ms.push_back(f["pose_ms"].get<double>());
-      fmt::print(
-          "animation  {} frames at {:g} fps, t = 0..{:.3f} s, posing (host, upload{}) median {:.2f} ms\n",
-          args.frames, scene.fps, (args.frames - 1) / scene.fps,
-          !reference_only && (options.shadows == ShadowMethod::kReference ||
-                              options.refraction.method == RefractionMethod::kImageSpace)
-              ? ", BVH"
-              : "",
-          median(pose_ms));
+      fmt::print("animation  {} frames at {:g} fps, t = 0..{:.3f} s, posing ({}) median {:.2f} ms\n",
+                 args.frames, scene.fps, (args.frames - 1) / scene.fps,
+                 reference_only ? "host"
+                 : options.shadows == ShadowMethod::kReference ||
+                         options.refraction.method == RefractionMethod::kImageSpace
+                     ? "host, upload, BVH"
+                     : "host, upload",
+                 median(pose_ms));
     }
     fmt::print(
         "frame      {:.2f} ms{} (median of {} frame{}; min {:.2f}, max {:.2f}; {:.1f} fps)\n",
