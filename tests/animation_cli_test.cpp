@@ -1,6 +1,6 @@
 // voxr render --frames N on deforming scenes: an output name with a frame field gets one image per frame,
 // each posed at its own time (three different images), the report has one entry per frame, and a bad frame
-// field is a one-line error.
+// field is a one-line error; voxr bench animation (forwarded by voxr to voxr-render) writes its tables.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -67,6 +67,25 @@ TEST(AnimationCli, BadFramePatternsAreOneLineErrors) {
     EXPECT_EQ(test::count_lines(r.err), 1) << r.err;
   }
   EXPECT_TRUE(fs::is_empty(dir));
+}
+
+TEST(AnimationCli, BenchAnimationWritesOneRowPerSceneAndRefusesStaticScenes) {
+  const fs::path out = scratch() / "bench-animation";
+  const test::CliResult r = run_voxr("bench animation --scenes " + kPassing +
+                                     " --frames 2 --size 32x24 --fresh 0 --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string csv = test::slurp(out.string() + ".csv");
+  EXPECT_EQ(test::count_lines(csv), 2) << csv;  // header + passing-objects
+  EXPECT_NE(csv.find("\npassing-objects,6274,voxel-multi,2,24,"), std::string::npos) << csv;
+  const std::string md = test::slurp(out.string() + ".md");
+  EXPECT_NE(md.find("| passing-objects | 6274 | voxel-multi |"), std::string::npos) << md;
+  EXPECT_NE(md.find("Load average"), std::string::npos);
+
+  const test::CliResult bad = run_voxr("bench animation --scenes " + std::string(VOXR_SOURCE_DIR) +
+                                       "/data/scenes/gem.json --frames 1 --fresh 0 --out " + out.string());
+  EXPECT_NE(bad.code, 0);
+  EXPECT_NE(bad.err.find("gem.json: the scene is not animated"), std::string::npos) << bad.err;
+  EXPECT_EQ(test::count_lines(bad.err), 1) << bad.err;
 }
 
 }  // namespace
