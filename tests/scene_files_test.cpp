@@ -57,6 +57,11 @@ const SceneCounts kScenes[] = {
     {"foliage.json", 13934, 13934, true, nullptr},
     // Floor + red box + blue sphere (2,208) + green pane box + three stained-glass sheets.
     {"glass-floor.json", 2240, 2240, true, nullptr},
+    // Deforming scenes: the shadow-tree swaying; floor + a box subdivided 5 times (12 x 4^5); floor + torus
+    // 48 x 24 (2,304) + sphere 32 x 64 (3,968).
+    {"swaying-tree.json", kTreeMin + 2, kTreeMax + 2, true, nullptr},
+    {"morphing-glass.json", 12290, 12290, false, nullptr},
+    {"passing-objects.json", 6274, 6274, false, nullptr},
     // The shadow-tree, every triangle split into 16: ~1 M.
     {"tree-1m.json", 16 * kTreeMin + 2, 16 * kTreeMax + 2, false, nullptr},
 };

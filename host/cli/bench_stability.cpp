@@ -66,10 +66,7 @@ int run_bench_stability(const BenchStabilityArgs& args) {
       cases.push_back(std::move(c));
   for (const std::string& f : args.families)
     if (std::none_of(cases.begin(), cases.end(), [&](const StabilityCase& c) { return c.family == f; }))
-      fail(
-          "--family: no case of family '{}' (families: voxelization, rendering, inputs, temporal when "
-          "merged)",
-          f);
+      fail("--family: no case of family '{}' (families: voxelization, rendering, temporal, inputs)", f);
   const std::vector<StabilityCaseResult> results = run_stability_cases(cases, ctx);
   const std::array<double, 3> load_after = load_averages();
   StabilityHeader header;

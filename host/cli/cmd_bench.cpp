@@ -1,6 +1,7 @@
 // voxr bench: voxelize (fresh process, job and frame figures: cli/bench_voxelize.h), table1 (the papers'
-// Table 1, every method), solid (the solid fill modes); shadows, refraction and stability
-// (cli/bench_shadows.h, cli/bench_refraction.h, cli/bench_stability.h) live in voxr-render.
+// Table 1, every method), solid (the solid fill modes); shadows, refraction, stability and animation
+// (cli/bench_shadows.h, cli/bench_refraction.h, cli/bench_stability.h, cli/bench_animation.h) live in
+// voxr-render.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -172,10 +173,12 @@ Command add_bench(CLI::App& app) {
   const Command shadows = add_bench_shadows(*sub);
   const Command refraction = add_bench_refraction(*sub);
   const Command stability = add_bench_stability(*sub);
-  return {sub, [args, vox, table, t1, solid, so, shadows, refraction, stability] {
+  const Command animation = add_bench_animation(*sub);
+  return {sub, [args, vox, table, t1, solid, so, shadows, refraction, stability, animation] {
             if (shadows.app->parsed()) return shadows.run();
             if (refraction.app->parsed()) return refraction.run();
             if (stability.app->parsed()) return stability.run();
+            if (animation.app->parsed()) return animation.run();
             if (vox->parsed()) return run_bench_voxelize(*args);
             if (t1->parsed()) return run_bench_table1(*table);
             if (so->parsed()) return run_bench_solid(*solid);

@@ -7,6 +7,12 @@
 // error image is written beside the output.
 //
 // Like voxr voxelize, the device is opened and the programs built on a second thread while the scene is read.
+//
+// --frames N renders N frames. An animated scene (core/animation.h) is posed at t = f / fps for frame f and
+// handed to the renderer again (re-voxelized on the device: nothing is precomputed; the references rebuild
+// their BVH every frame, image-space refraction ray casts d_N every frame); the camera and light stay those
+// of frame 0. A static scene renders the same frame N times (warm timing). An output name with a frame
+// field (out_%04d.png, frame_pattern.h) gets every frame; without one only the last frame is written.
 #include <fmt/format.h>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
@@ -22,9 +28,11 @@
 #include "bench/median.h"
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
+#include "cli/frame_pattern.h"
 #include "cli/parse_args.h"
 #include "cli/prepared_runtime.h"
 #include "cli/render_error_target.h"
+#include "core/animation.h"
 #include "core/clock.h"
 #include "core/default_scene.h"
 #include "core/file_extension.h"
@@ -111,9 +119,12 @@ RenderOptions render_options(const RenderArgs& args) {
 int run_render(const RenderArgs& args) {
   const auto process_start = Clock::now();
   RenderOptions options = render_options(args);
-  if (!is_image_file(args.output))
+  const std::optional<FramePattern> pattern = parse_frame_pattern(args.output, "-o");
+  // The image written last (and named in the printout and error images): the last frame's.
+  const std::string last_output = pattern ? pattern->name(args.frames - 1) : args.output;
+  if (!is_image_file(last_output))
     fail("{}: the image format is chosen by extension: .png or .exr", args.output);
-  check_output_path(args.output);
+  check_output_path(last_output);
   if (!args.report.empty()) check_output_path(args.report);
   const glm::uvec2 size =
       args.size.empty() ? glm::uvec2(0) : parse_size(args.size, "--size");  // 0: the camera's
@@ -153,6 +164,7 @@ int run_render(const RenderArgs& args) {
   for (const MeshInstance& m : scene.meshes)
     for (const std::string& w : m.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
   const std::vector<Material> materials = scene.materials;
+  const bool animated = is_animated(scene);
   const EnvironmentMap environment = make_environment_map(scene.environment);
   const TriangleSoup soup = take_scene_triangles(scene);
   validate_soup(soup, scene.source);
@@ -178,7 +190,9 @@ int run_render(const RenderArgs& args) {
                            {"refraction_asked", refraction_method_info(asked_refraction).name},
                            {"environment", environment.source()},
                            {"triangles", soup.triangle_count()},
-                           {"size", {width, height}}};
+                           {"size", {width, height}},
+                           {"animated", animated}};
+  if (animated) report["fps"] = scene.fps;
   if (is_voxel_refraction(options.refraction.method))
     report["refraction_options"] = {{"res", options.refraction.resolution},
                                     {"step", step_rule_info(options.refraction.step).name},
@@ -189,19 +203,51 @@ int run_render(const RenderArgs& args) {
   std::vector<glm::vec3> transmittance;
   std::vector<RefractionPath> paths;
   std::vector<double> frame_ms;
+  std::map<std::string, std::vector<double>> stage_ms;  // per stage, one per frame
+  nlohmann::json frames = nlohmann::json::array();
   FrameStats stats;
   std::optional<RenderTargetChoice> target;
   FrameStats fixed_stats;  // --error-target: one frame on the fixed 512 grids it replaces
+  // The frame's triangles: `soup` (frame 0, or every frame of a static scene) or `posed`.
+  TriangleSoup posed;
+  const TriangleSoup* current = &soup;
   std::unique_ptr<ReferenceScene> reference;
   const auto reference_scene = [&] {
-    if (!reference) reference = std::make_unique<ReferenceScene>(soup, materials);
+    if (!reference) reference = std::make_unique<ReferenceScene>(*current, materials);
     return reference.get();
+  };
+  // Poses frame f of an animated scene: the references' BVH of the old pose is dropped.
+  const auto pose = [&](uint32_t f) {
+    pose_scene(scene, f / scene.fps, soup.anchor, posed);
+    current = &posed;
+    reference.reset();
+  };
+  const auto progress = [&](uint32_t f) {
+    if (tty && args.frames > 1) fmt::print(stderr, "\r{:<60}\rframe {}/{}", "", f + 1, args.frames);
+  };
+  const auto finish_frame = [&](uint32_t f, double ms, double pose_ms, const nlohmann::json& stages) {
+    frame_ms.push_back(ms);
+    frames.push_back({{"time_s", animated ? f / scene.fps : 0.0},
+                      {"frame_ms", ms},
+                      {"pose_ms", pose_ms},
+                      {"stages", stages}});
+    if (pattern) write_image(image, pattern->name(f));
   };
   if (reference_only) {
     if (tty) fmt::print(stderr, "\r{:<60}\rtracing the reference...", "");
     reference_scene();
     for (uint32_t f = 0; f < args.frames; ++f) {
+      progress(f);
+      double pose_ms = 0.0;
+      if (animated) {
+        const auto pose_start = Clock::now();
+        pose(f);
+        pose_ms = ms_since(pose_start);
+      }
       const auto frame_start = Clock::now();
+      // Built here for an animated scene's every frame (counted in the frame), before the loop otherwise.
+      const bool new_bvh = f == 0 || animated;
+      reference_scene();
       const ReferenceModel model =
           asked_refraction == RefractionMethod::kReference ? ReferenceModel::kMatched : ReferenceModel::kFull;
       RefractionReference r =
@@ -209,7 +255,12 @@ int run_render(const RenderArgs& args) {
       image = std::move(r.image);
       report["ms"] = {
           {"bvh_build", r.build_ms}, {"trace", r.trace_ms}, {"shadow", r.shadow_ms}, {"shade", r.shade_ms}};
-      frame_ms.push_back(ms_since(frame_start) + (f == 0 ? reference->build_ms() : 0.0));
+      const double bvh_ms = new_bvh ? reference->build_ms() : 0.0;
+      finish_frame(
+          f, ms_since(frame_start) + (f == 0 && !animated ? bvh_ms : 0.0), pose_ms,
+          {{"bvh_build", bvh_ms}, {"trace", r.trace_ms}, {"shadow", r.shadow_ms}, {"shade", r.shade_ms}});
+      for (const auto& [name, ms] : frames.back()["stages"].items())
+        stage_ms[name].push_back(ms.get<double>());
     }
     report["device"] = "host (Embree)";
   } else {
@@ -217,10 +268,11 @@ int run_render(const RenderArgs& args) {
     PreparedRuntime<FrameRenderer> prepared = background.get();
     const double wait_ms = ms_since(wait_start);
     if (tty) fmt::print(stderr, "\r{:<60}\rrendering...", "");
-    prepared.engine->set_scene(soup, materials);
+    if (!animated) prepared.engine->set_scene(soup, materials);
     prepared.engine->set_environment(environment);
     double precompute_ms = 0.0;
-    if (options.refraction.method == RefractionMethod::kImageSpace) {
+    const bool image_space = options.refraction.method == RefractionMethod::kImageSpace;
+    if (image_space && !animated) {
       // Wyman's d_N, ray cast once per scene as the paper precomputes it offline.
       const auto start = Clock::now();
       prepared.engine->set_inward_distances(
@@ -233,6 +285,13 @@ int run_render(const RenderArgs& args) {
         return reference_transmittance(*reference_scene(), light, s);
       };
     if (args.error_target) {
+      // The grids are chosen on frame 0 (an animated scene's `soup` is its frame 0).
+      if (animated) {
+        prepared.engine->set_scene(soup, materials);
+        if (image_space)
+          prepared.engine->set_inward_distances(
+              inward_distances(*reference_scene(), soup, materials, vertex_normals(soup)));
+      }
       target = choose_render_grids(*prepared.engine, *reference_scene(), render_mats, light, environment,
                                    scene.camera, soup.anchor, bounds, width, height, *args.error_target,
                                    &options, [&](const std::string& line) {
@@ -241,12 +300,31 @@ int run_render(const RenderArgs& args) {
       if (tty) fmt::print(stderr, "\r{:<60}\rrendering...", "");
     }
     for (uint32_t f = 0; f < args.frames; ++f) {
+      progress(f);
+      // Host posing, the upload and vertex normals (set_scene), and what the frame's method needs of the
+      // new pose on the host: the exact shadows' BVH, image-space refraction's d_N.
+      double pose_ms = 0.0;
+      if (animated) {
+        const auto pose_start = Clock::now();
+        pose(f);
+        prepared.engine->set_scene(posed, materials);
+        if (options.shadows == ShadowMethod::kReference) reference_scene();
+        if (image_space)
+          prepared.engine->set_inward_distances(
+              inward_distances(*reference_scene(), posed, materials, vertex_normals(posed)));
+        pose_ms = ms_since(pose_start);
+      }
       RenderedFrame frame = prepared.engine->render(light, camera, options, exact, &stats);
-      frame_ms.push_back(stats.frame_ms);
       image = std::move(frame.image);
       samples = std::move(frame.samples);
       transmittance = std::move(frame.transmittance);
       paths = std::move(frame.paths);
+      nlohmann::json frame_stages = nlohmann::json::object();
+      for (const auto& [name, ms] : stats.stage_ms) {
+        frame_stages[name] = ms;
+        stage_ms[name].push_back(ms);
+      }
+      finish_frame(f, stats.frame_ms, pose_ms, frame_stages);
     }
     if (target) {
       // The saving is measured: the frame on the fixed grids, rendered twice (the first grows the buffers).
@@ -257,7 +335,7 @@ int run_render(const RenderArgs& args) {
       for (int i = 0; i < 2; ++i) prepared.engine->render(light, camera, fixed, exact, &fixed_stats);
     }
     nlohmann::json stages = nlohmann::json::object();
-    for (const auto& [name, ms] : stats.stage_ms) stages[name] = ms;
+    for (const auto& [name, ms] : stage_ms) stages[name] = median(ms);
     report["device"] = prepared.cl->device().label();
     report["driver"] = prepared.cl->device().driver_version;
     report["ms"] = {{"stages", stages},
@@ -286,7 +364,11 @@ int run_render(const RenderArgs& args) {
   report["ms"]["load"] = load_ms;
   report["ms"]["frame"] = frame_ms.back();
   report["ms"]["frame_median"] = median(frame_ms);
-  report["frames"] = args.frames;
+  report["ms"]["frame_min"] = *std::min_element(frame_ms.begin(), frame_ms.end());
+  report["ms"]["frame_max"] = *std::max_element(frame_ms.begin(), frame_ms.end());
+  report["fps_rendered"] = 1000.0 / median(frame_ms);
+  report["frame_count"] = args.frames;
+  report["frames"] = frames;
 
   nlohmann::json compare = nlohmann::json::object();
   // The exact transmittance at this frame's path ends: the shadows are measured with it, and the refraction
@@ -304,7 +386,7 @@ int run_render(const RenderArgs& args) {
     const RefractionReference r = render_refraction_reference(*reference_scene(), render_mats, light,
                                                               environment, camera, ReferenceModel::kMatched);
     const RefractionError e = refraction_error(exact_shadow_image, paths, r.image, r.paths);
-    const std::filesystem::path error_path = beside(args.output, "error");
+    const std::filesystem::path error_path = beside(last_output, "error");
     write_image(error_image(exact_shadow_image, r.image), error_path.string());
     compare["refraction"] = {{"reference", "matched"},
                              {"rmse", e.rmse},
@@ -324,7 +406,7 @@ int run_render(const RenderArgs& args) {
     const auto ref_start = Clock::now();
     const std::vector<uint8_t> mask = shadow_receivers(samples, render_mats, light);
     const TransmittanceError e = transmittance_error(transmittance, exact, mask, 0.05);
-    const std::filesystem::path error_path = beside(args.output, refracting ? "shadow-error" : "error");
+    const std::filesystem::path error_path = beside(last_output, refracting ? "shadow-error" : "error");
     write_image(error_image(transmittance, exact, width, height, mask, 1.0), error_path.string());
     compare["shadows"] = {{"transmittance_rmse", e.rmse},
                           {"transmittance_max", e.max_abs},
@@ -357,7 +439,7 @@ int run_render(const RenderArgs& args) {
     if (target->shadows) t["shadows"] = search_json(*target->shadows, target->shadows_budget);
     report["error_target"] = t;
   }
-  write_image(image, args.output);
+  if (!pattern) write_image(image, args.output);
   report["ms"]["process"] = ms_since(process_start);
   if (!args.report.empty()) write_file_atomically(args.report, report.dump(2) + "\n");
   if (tty) fmt::print(stderr, "\r{:<60}\r", "");
@@ -382,13 +464,30 @@ int run_render(const RenderArgs& args) {
       fmt::print("light grid {}, {} triangles from the light, {:.1f} MiB\n", stats.light.describe(),
                  stats.light_triangles, double(stats.device_bytes) / (1 << 20));
     std::string stages;
-    for (const auto& [name, ms] : stats.stage_ms)
-      if (ms > 0.0) stages += fmt::format("{}{} {:.2f}", stages.empty() ? "" : ", ", name, ms);
-    fmt::print("frame      {:.2f} ms{} (median of {} frame{}; min {:.2f}, max {:.2f})\n", median(frame_ms),
-               reference_only ? " incl. the BVH build on the first" : "", frame_ms.size(),
-               frame_ms.size() == 1 ? "" : "s", *std::min_element(frame_ms.begin(), frame_ms.end()),
-               *std::max_element(frame_ms.begin(), frame_ms.end()));
-    if (!stages.empty()) fmt::print("stages ms  {} (host {:.2f})\n", stages, stats.host_ms);
+    for (const auto& [name, ms] : stage_ms)
+      if (median(ms) > 0.0)
+        stages += fmt::format("{}{} {:.2f}", stages.empty() ? "" : ", ", name, median(ms));
+    if (animated) {
+      std::vector<double> pose_ms;
+      for (const nlohmann::json& f : frames) pose_ms.push_back(f["pose_ms"].get<double>());
+      fmt::print("animation  {} frames at {:g} fps, t = 0..{:.3f} s, posing ({}) median {:.2f} ms\n",
+                 args.frames, scene.fps, (args.frames - 1) / scene.fps,
+                 reference_only ? "host"
+                 : options.shadows == ShadowMethod::kReference ||
+                         options.refraction.method == RefractionMethod::kImageSpace
+                     ? "host, upload, BVH"
+                     : "host, upload",
+                 median(pose_ms));
+    }
+    fmt::print(
+        "frame      {:.2f} ms{} (median of {} frame{}; min {:.2f}, max {:.2f}; {:.1f} fps)\n",
+        median(frame_ms),
+        reference_only ? (animated ? " incl. the BVH build" : " incl. the BVH build on the first") : "",
+        frame_ms.size(), frame_ms.size() == 1 ? "" : "s", report["ms"]["frame_min"].get<double>(),
+        report["ms"]["frame_max"].get<double>(), report["fps_rendered"].get<double>());
+    if (!stages.empty())
+      fmt::print("stages ms  {} (medians{}; host {:.2f})\n", stages,
+                 reference_only ? "" : " of the device frame", stats.host_ms);
     if (target) {
       const auto line = [](const char* what, const ResolutionChoice& c, double budget) {
         std::string trials;
@@ -437,7 +536,10 @@ int run_render(const RenderArgs& args) {
       fmt::print("wrote      {}\n", c["error_image"].get<std::string>());
     }
     fmt::print("process ms {:.1f}\n", report["ms"]["process"].get<double>());
-    fmt::print("wrote      {}\n", args.output);
+    if (pattern)
+      fmt::print("wrote      {} .. {}\n", pattern->name(0), last_output);
+    else
+      fmt::print("wrote      {}\n", args.output);
   }
   return 0;
 }
@@ -449,7 +551,9 @@ Command add_render(CLI::App& app) {
   CLI::App* sub =
       app.add_subcommand("render", "Render a scene with transparent shadows and refraction (.png or .exr)");
   sub->add_option("input", args->input, "scene file (.json) or mesh; omitted: the built-in default scene");
-  sub->add_option("-o,--output", args->output, "image: .png (8-bit sRGB) or .exr (linear float)")
+  sub->add_option(
+         "-o,--output", args->output,
+         "image: .png (8-bit sRGB) or .exr (linear float); %d or %0Nd in the name: one image per frame")
       ->capture_default_str();
   std::string methods;
   for (const ShadowMethodInfo& info : kShadowMethods)
@@ -492,8 +596,11 @@ Command add_render(CLI::App& app) {
          "count as a new interface within one boundary run")
       ->check(CLI::Range(0.0f, 180.0f))
       ->capture_default_str();
-  sub->add_option("--frames", args->frames,
-                  "render the frame this many times in this process and report the median (warm) frame time")
+  sub->add_option(
+         "--frames", args->frames,
+         "frames to render: an animated scene at t = f / fps (re-voxelized every frame), a static one "
+         "the same frame again (warm timing); median, min, max and per-stage times. With a frame "
+         "field in -o (out_%04d.png) every frame is written, else the last")
       ->check(CLI::Range(1u, 100000u))
       ->capture_default_str();
   sub->add_option(

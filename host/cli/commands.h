@@ -23,7 +23,10 @@ Command add_bench_shadows(CLI::App& bench);
 Command add_bench_refraction(CLI::App& bench);
 // `voxr bench stability`, a subcommand of `bench`.
 Command add_bench_stability(CLI::App& bench);
-// voxr-render holds render, bench shadows, bench refraction and bench stability (VOXR_CLI_RENDER); voxr
-// forwards them to it (main.cpp) and registers them only for --help (render_forward.cpp).
+// `voxr bench animation`, a subcommand of `bench`.
+Command add_bench_animation(CLI::App& bench);
+// voxr-render holds render, bench shadows, bench refraction, bench stability and bench animation
+// (VOXR_CLI_RENDER); voxr forwards them to it (main.cpp) and registers them only for --help
+// (render_forward.cpp).
 
 }  // namespace voxr::cli

@@ -1,7 +1,6 @@
 // What `voxr` (without VOXR_CLI_RENDER) registers for the rendering commands: their names and summaries for
-// --help. main.cpp hands every `voxr render`, `voxr bench shadows`, `voxr bench refraction` and `voxr bench
-// stability` to voxr-render
-// before parsing, so these are never run.
+// --help. main.cpp hands every `voxr render` and `voxr bench shadows|refraction|stability|animation` to
+// voxr-render before parsing, so these are never run.
 #include "cli/commands.h"
 #include "core/error.h"
 
@@ -40,6 +39,13 @@ Command add_bench_stability(CLI::App& bench) {
   CLI::App* sub = bench.add_subcommand(
       "stability",
       "The stability suite: every method on every failure mode, bounds checked -> docs/stability.md");
+  sub->allow_extras();
+  return {sub, forwarded};
+}
+
+Command add_bench_animation(CLI::App& bench) {
+  CLI::App* sub = bench.add_subcommand(
+      "animation", "Deforming scenes re-voxelized every frame: frame rate, per-stage times, fresh process");
   sub->allow_extras();
   return {sub, forwarded};
 }

@@ -180,6 +180,22 @@ glm::vec2 JsonObjectReader::vec2(std::string_view key, std::optional<glm::vec2> 
   return glm::vec2(n[0], n[1]);
 }
 
+glm::vec3 JsonObjectReader::scale(std::string_view key, std::optional<glm::vec3> fallback) const {
+  const json* v = get(key);
+  if (!v && fallback) return *fallback;
+  const json& value = v ? *v : required(key);
+  glm::vec3 s;
+  if (value.is_number()) {
+    s = glm::vec3(number(key));
+  } else {
+    if (!value.is_array())
+      fail_key(key, fmt::format("must be a number or an array of 3 numbers (got {})", shown(value)));
+    s = vec3(key);
+  }
+  require(s.x != 0.0f && s.y != 0.0f && s.z != 0.0f, key, "must not be 0 along any axis");
+  return s;
+}
+
 std::vector<float> JsonObjectReader::numbers(std::string_view key,
                                              std::optional<std::vector<float>> fallback) const {
   const json* v = get(key);

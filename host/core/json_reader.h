@@ -39,6 +39,8 @@ class JsonObjectReader {
   std::string string(std::string_view key, std::optional<std::string> fallback = std::nullopt) const;
   glm::vec3 vec3(std::string_view key, std::optional<glm::vec3> fallback = std::nullopt) const;
   glm::vec2 vec2(std::string_view key, std::optional<glm::vec2> fallback = std::nullopt) const;
+  // A scale: one number (uniform) or an array of 3 numbers, none of them 0.
+  glm::vec3 scale(std::string_view key, std::optional<glm::vec3> fallback = std::nullopt) const;
   std::vector<float> numbers(std::string_view key,
                              std::optional<std::vector<float>> fallback = std::nullopt) const;
 

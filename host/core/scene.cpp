@@ -143,15 +143,7 @@ Material parse_material(const json& value, const std::string& where, const std::
 
 glm::mat4 parse_transform(const json& value, const std::string& where, const std::string& path) {
   const JsonObjectReader in(value, where, path, {"scale", "rotate_deg", "translate"});
-  glm::vec3 scale(1.0f);
-  if (const json* s = in.get("scale"); s && s->is_number()) {
-    scale = glm::vec3(in.number("scale"));
-  } else if (s) {
-    if (!s->is_array())
-      in.fail_key("scale", fmt::format("must be a number or an array of 3 numbers (got {})", shown(*s)));
-    scale = in.vec3("scale");
-  }
-  in.require(scale.x != 0.0f && scale.y != 0.0f && scale.z != 0.0f, "scale", "must not be 0 along any axis");
+  const glm::vec3 scale = in.scale("scale", glm::vec3(1.0f));
   return make_transform(scale, in.vec3("rotate_deg", glm::vec3(0.0f)), in.vec3("translate", glm::vec3(0.0f)));
 }
 
@@ -169,8 +161,8 @@ uint32_t find_material(const JsonObjectReader& in, const std::vector<Material>& 
 
 MeshInstance parse_mesh(const json& value, const std::string& where, const std::string& path,
                         const std::vector<Material>& materials, const std::filesystem::path& base_dir) {
-  const JsonObjectReader in(value, where, path,
-                            {"file", "generator", "params", "material", "subdivide", "transform"});
+  const JsonObjectReader in(
+      value, where, path, {"file", "generator", "params", "material", "subdivide", "transform", "animation"});
   MeshInstance mesh;
   if (in.has("file") == in.has("generator"))
     fail("{}: '{}' needs exactly one of 'file' and 'generator'", where, path);
@@ -223,6 +215,8 @@ MeshInstance parse_mesh(const json& value, const std::string& where, const std::
   }
 
   if (const json* t = in.get("transform")) mesh.transform = parse_transform(*t, where, in.path("transform"));
+  if (const json* a = in.get("animation"))
+    mesh.animation = parse_mesh_animation(*a, where, in.path("animation"));
   return mesh;
 }
 
@@ -378,7 +372,7 @@ Scene parse_scene(std::string_view json_text, const std::string& label,
                   const std::filesystem::path& base_dir) {
   const json root_value = parse_json(json_text, label);
   const JsonObjectReader root(root_value, label, "",
-                              {"materials", "meshes", "light", "camera", "environment", "grid"});
+                              {"materials", "meshes", "light", "camera", "environment", "grid", "animation"});
   Scene scene;
   scene.source = label;
 
@@ -430,6 +424,7 @@ Scene parse_scene(std::string_view json_text, const std::string& label,
     scene.grid = parse_grid(*grid, label);
     scene.grid_given = true;
   }
+  if (const json* animation = root.get("animation")) scene.fps = parse_scene_animation(*animation, label);
   apply_defaults(scene, root.has("light"), root.has("camera"), root.has("environment"));
   return scene;
 }
@@ -484,7 +479,7 @@ namespace {
 
 // One mesh placed as it is: its soup is the scene's, anchor and positions bit for bit.
 bool single_mesh_as_is(const Scene& scene) {
-  return scene.meshes.size() == 1 && scene.meshes[0].transform == glm::mat4(1.0f);
+  return scene.meshes.size() == 1 && scene.meshes[0].transform == glm::mat4(1.0f) && !is_animated(scene);
 }
 
 }  // namespace
@@ -500,6 +495,7 @@ TriangleSoup take_scene_triangles(Scene& scene) {
 }
 
 TriangleSoup scene_triangles(const Scene& scene) {
+  if (is_animated(scene)) return pose_scene(scene, 0.0, animation_anchor(scene));
   TriangleSoup out;
   size_t vertices = 0, triangles = 0;
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
@@ -523,6 +519,13 @@ TriangleSoup scene_triangles(const Scene& scene) {
 }
 
 Bounds scene_bounds(const Scene& scene) {
+  if (is_animated(scene)) {
+    const TriangleSoup soup = scene_triangles(scene);
+    const Bounds b = soup.bounds();
+    return b.empty()
+               ? b
+               : Bounds{glm::vec3(glm::dvec3(b.lo) + soup.anchor), glm::vec3(glm::dvec3(b.hi) + soup.anchor)};
+  }
   Bounds bounds;
   for (const MeshInstance& m : scene.meshes) {
     std::vector<bool> used(m.soup.positions.size(), false);

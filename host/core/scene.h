@@ -22,7 +22,21 @@
 //        "subdivide": 0,                              midpoint subdivision levels (0..8), before transforming
 //        "transform": {"scale": 1.0,                  a number or [x, y, z], no component 0
 //                      "rotate_deg": [0, 0, 0],       about X, then Y, then Z, in degrees
-//                      "translate": [0, 0, 0]}},      applied in this order: scale, rotate, translate
+//                      "translate": [0, 0, 0]},       applied in this order: scale, rotate, translate
+//        "animation": {                               optional; makes the scene deforming (animation.h)
+//          "keys": [{"time": 0,                       seconds >= 0, strictly increasing (required)
+//                    "scale": 1, "rotate_deg": [0, 0, 0], "translate": [0, 0, 0]},  as "transform"
+//                   {"time": 2, "translate": [1, 0, 0]}],  interpolated linearly, rotation by quaternion
+//                                                     slerp; held before the first and after the last key;
+//                                                     applied after "transform": world = K(t) * transform * p
+//          "deform": [                                per-vertex, object space, before "transform", in order;
+//                                                     h = height above the mesh's lowest vertex
+//            {"kind": "sway", "amplitude": 0.05,      required: object units of displacement at h = 1
+//             "frequency_hz": 0.5,                    required, > 0
+//             "axis": [1, 0, 0],                      non-zero sway direction ([1, 0, 0]); the offset is
+//             "phase_per_unit": 0},                   axis * amplitude * h * sin(2 pi f t + phase_per_unit h)
+//            {"kind": "twist", "degrees_per_unit": 30, required: peak rotation about the object's Y axis
+//             "frequency_hz": 0.25}]}},               per unit of h; angle = deg * h * sin(2 pi f t), f > 0
 //       {"generator": "torus",                        torus | sphere | box | vase | tree | plane | foliage
 //        "params": {"major": 1, "minor": 0.4},        generator parameters (generators.h)
 //        "material": "floor"}
@@ -44,13 +58,15 @@
 //              "dims": [256, 128, 256],               exact dimensions (not both)
 //              "bounds": [x0, y0, z0, x1, y1, z1],    world box, x0 < x1 etc.; default: fitted to the scene
 //              "margin_voxels": 0.25}                 >= 0, around fitted bounds (faces kept off ties)
+//     "animation": {"fps": 24}                        frames per second of `voxr render --frames` (24)
 //   }
 //
 // Mesh file paths are relative to the scene file's folder. A path "$VOXR_MESH_DIR/NAME", or a relative path
 // not found next to the scene, is looked up in the folder named by the environment variable VOXR_MESH_DIR
 // (default: data/meshes under the current directory). Material ids are indices into "materials".
 // Without "light", "camera" or "environment", defaults frame the scene's bounds (default_camera,
-// default_light, kDefaultEnvironment).
+// default_light, kDefaultEnvironment). An animated scene's bounds, default camera and light, fitted grid and
+// scene_triangles are those of t = 0; pose_scene (animation.h) gives the triangles at any time.
 #pragma once
 
 #include <nlohmann/json_fwd.hpp>
@@ -65,6 +81,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/animation.h"
 #include "core/grid_spec.h"
 #include "core/json_reader.h"
 #include "core/material.h"
@@ -104,6 +121,7 @@ struct MeshInstance {
   // Scene material id given to every triangle, or TriangleSoup::kKeepMaterial when the soup's own ids are
   // already scene material ids (a "material" list remaps them at load time).
   uint32_t material = 0;
+  MeshAnimation animation;            // empty: the mesh does not move
   std::vector<std::string> warnings;  // from reading the file (mesh_loader.h), one line each
 };
 
@@ -114,8 +132,9 @@ struct Scene {
   Camera camera;
   Environment environment;
   GridRequest grid;
-  bool grid_given = false;  // the scene file had a "grid" object
-  std::string source;       // the scene file, the mesh file, or a description of a built-in scene
+  bool grid_given = false;   // the scene file had a "grid" object
+  double fps = kDefaultFps;  // frames per second of an animation
+  std::string source;        // the scene file, the mesh file, or a description of a built-in scene
 };
 
 // Reads a scene file. Throws voxr::Error naming the file and the key path at fault (or the line and

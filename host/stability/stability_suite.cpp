@@ -13,9 +13,9 @@ namespace voxr {
 
 std::vector<StabilityCase> all_stability_cases() {
   std::vector<StabilityCase> cases;
-  // The suite's families, in page order: the one list of them. temporal_stability_cases() joins here when
-  // its file is merged.
-  for (auto family : {voxelization_stability_cases, rendering_stability_cases, input_stability_cases})
+  // The suite's families, in page order: the one list of them.
+  for (auto family : {voxelization_stability_cases, rendering_stability_cases, temporal_stability_cases,
+                      input_stability_cases})
     for (StabilityCase& c : family()) cases.push_back(std::move(c));
   return cases;
 }
