@@ -12,8 +12,12 @@
  * parity on a stack), the environment layer's ends the path on that surface. Outside every medium and past
  * the refractor's sphere the environment layer alone is searched to the scene's sphere; nothing found there
  * is the environment, nothing found inside a medium is VOXR_PATH_LOST (the maps miss a surface).
+ * The searches read each map's distances alone (dm_distances: one float per texel, -1 where empty, the
+ * refractor layers then the environment layer), the samples only at hits.
+ *   dm_distances: distances[first + i] from samples[i]. shape: one work item per texel.
+ *   distance_maps: the tracing. shape: one work item per pixel.
  * in:  camera, primary samples (width * height), refractor layers (layers * 6 * layer_res^2 SurfaceSample),
- *      environment layer (6 * layer_res^2), materials
+ *      environment layer (6 * layer_res^2), their distances ((layers + 1) * 6 * layer_res^2), materials
  * out: ends[pixel] (SurfaceSample), paths[pixel] (RefractionPath) */
 #include "refraction_path.h"
 
@@ -53,23 +57,36 @@ inline __global const SurfaceSample* dm_map(__global const SurfaceSample* layers
   return m < p->layers ? layers + (ulong)m * 6u * p->layer_res * p->layer_res : environment;
 }
 
+__kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void dm_distances(
+    __global const SurfaceSample* samples, uint count, ulong first, __global float* distances) {
+  const uint i = get_global_id(0);
+  if (i >= count) return;
+  distances[first + i] = samples[i].triangle == VOXR_NO_TRIANGLE ? -1.0f : samples[i].distance;
+}
+
+/* Map m's distances: refractor layer m, or the environment layer for m == layers. */
+inline __global const float* dm_distance_map(__global const float* distances, const DistanceMapParams* p,
+                                             uint m) {
+  return distances + (ulong)m * 6u * p->layer_res * p->layer_res;
+}
+
 /* The gap of point q against a map: |q - ref| minus the map's distance in q's direction. Returns 0 where
  * the map has no surface in that direction. */
-inline int dm_gap(__global const SurfaceSample* map, const DistanceMapParams* p, float3 ref, float3 q,
-                  float* gap, uint* texel) {
+inline int dm_gap(__global const float* map, const DistanceMapParams* p, float3 ref, float3 q, float* gap,
+                  uint* texel) {
   const float3 v = q - ref;
   const uint t = dm_texel(p, v);
-  if (map[t].triangle == VOXR_NO_TRIANGLE) return 0;
-  *gap = length(v) - map[t].distance;
+  const float stored = map[t];
+  if (stored < 0.0f) return 0;
+  *gap = length(v) - stored;
   *texel = t;
   return 1;
 }
 
 /* Secant refinement of a sign change of a map's gap between ray parameters ta (gap ga) and tb (gap gb).
  * Returns 1 with the refined parameter and its texel where the last gap is within tol. */
-inline int dm_secant(__global const SurfaceSample* map, const DistanceMapParams* p, float3 ref, float3 o,
-                     float3 d, float ta, float ga, float tb, float gb, float tol, float* t_hit,
-                     uint* texel_hit) {
+inline int dm_secant(__global const float* map, const DistanceMapParams* p, float3 ref, float3 o, float3 d,
+                     float ta, float ga, float tb, float gb, float tol, float* t_hit, uint* texel_hit) {
   int have = 0;
   float t = ta, g = ga;
   uint texel = 0u;
@@ -101,16 +118,16 @@ inline int dm_secant(__global const SurfaceSample* map, const DistanceMapParams*
  * [t_begin, t_end], in p->search_steps steps. Hits on triangle `left` or nearer than min_t are rejected.
  * Returns 1 with the hit's parameter, map and texel. */
 inline int dm_search(__global const SurfaceSample* layers, __global const SurfaceSample* environment,
-                     const DistanceMapParams* p, float3 ref, float3 o, float3 d, float t_begin, float t_end,
-                     uint m_lo, uint m_hi, uint left, float min_t, float* t_hit, uint* map_hit,
-                     uint* texel_hit) {
+                     __global const float* distances, const DistanceMapParams* p, float3 ref, float3 o,
+                     float3 d, float t_begin, float t_end, uint m_lo, uint m_hi, uint left, float min_t,
+                     float* t_hit, uint* map_hit, uint* texel_hit) {
   if (!(t_end > t_begin)) return 0;
   float gap_before[DM_MAX_MAPS];
   int valid_before[DM_MAX_MAPS];
   uint texel;
   for (uint m = m_lo; m <= m_hi; ++m)
     valid_before[m - m_lo] =
-        dm_gap(dm_map(layers, environment, p, m), p, ref, o + t_begin * d, &gap_before[m - m_lo], &texel);
+        dm_gap(dm_distance_map(distances, p, m), p, ref, o + t_begin * d, &gap_before[m - m_lo], &texel);
   const uint steps = max(p->search_steps, 1u);
   const float dt = (t_end - t_begin) / (float)steps;
   for (uint k = 1; k <= steps; ++k) {
@@ -120,7 +137,7 @@ inline int dm_search(__global const SurfaceSample* layers, __global const Surfac
     int found = 0;
     float best = INFINITY;
     for (uint m = m_lo; m <= m_hi; ++m) {
-      __global const SurfaceSample* map = dm_map(layers, environment, p, m);
+      __global const float* map = dm_distance_map(distances, p, m);
       float g = 0.0f;
       const int valid = dm_gap(map, p, ref, q, &g, &texel);
       const uint i = m - m_lo;
@@ -128,7 +145,7 @@ inline int dm_search(__global const SurfaceSample* layers, __global const Surfac
         float th;
         uint tx;
         if (dm_secant(map, p, ref, o, d, ta, gap_before[i], tb, g, tol, &th, &tx) && th >= min_t &&
-            th < best && map[tx].triangle != left) {
+            th < best && dm_map(layers, environment, p, m)[tx].triangle != left) {
           best = th;
           *map_hit = m;
           *texel_hit = tx;
@@ -156,8 +173,9 @@ inline float dm_sphere_exit(float3 v, float3 d, float r) {
 
 __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void distance_maps(
     RenderCamera cam, __global const SurfaceSample* primary, __global const SurfaceSample* layers,
-    __global const SurfaceSample* environment, __global const RenderMaterial* materials, uint material_count,
-    DistanceMapParams p, __global SurfaceSample* ends, __global RefractionPath* paths) {
+    __global const SurfaceSample* environment, __global const float* distances,
+    __global const RenderMaterial* materials, uint material_count, DistanceMapParams p,
+    __global SurfaceSample* ends, __global RefractionPath* paths) {
   const uint id = get_global_id(0);
   if (id >= cam.width * cam.height) return;
   const float3 camera_dir = rp_camera_direction(&cam, id % cam.width, id / cam.width);
@@ -184,10 +202,10 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void distance_m
     const float min_t = length(v) / (float)p.layer_res; /* half a texel's footprint where the ray leaves */
     float t;
     uint m, texel;
-    int hit = dm_search(layers, environment, &p, ref, o, d, p.epsilon, t_refractor, 0u, env_map, left, min_t,
-                        &t, &m, &texel);
+    int hit = dm_search(layers, environment, distances, &p, ref, o, d, p.epsilon, t_refractor, 0u, env_map,
+                        left, min_t, &t, &m, &texel);
     if (!hit && depth == 0u)
-      hit = dm_search(layers, environment, &p, ref, o, d, fmax(p.epsilon, t_refractor),
+      hit = dm_search(layers, environment, distances, &p, ref, o, d, fmax(p.epsilon, t_refractor),
                       dm_sphere_exit(v, d, p.scene_radius), env_map, env_map, left, min_t, &t, &m, &texel);
     if (!hit) {
       events |= depth > 0u ? VOXR_PATH_LOST : VOXR_PATH_ENV;

@@ -128,6 +128,16 @@ void DistanceMapRefraction::trace(const DeviceMesh& mesh, const cl::Buffer& vert
     resolve_into(mesh, vertex_normals, outer, peel_[0].buffer, environment, uint64_t(face) * face_texels);
   }
 
+  // The searches' compact copy: one distance per texel, refractor layers then the environment layer.
+  const uint64_t layer_texels = options.layers * 6 * face_texels, env_texels = 6 * face_texels;
+  cl::Buffer& distances =
+      distances_.ensure(cl_, (layer_texels + env_texels) * sizeof(float), "distance map distances");
+  cl::Kernel extract = cl_.kernel("distance_maps.cl", "dm_distances");
+  cl_.launch("dm-layers", extract, layer_texels, kGroup, layers, cl_uint(layer_texels), cl_ulong(0),
+             distances);
+  cl_.launch("dm-layers", extract, env_texels, kGroup, environment, cl_uint(env_texels),
+             cl_ulong(layer_texels), distances);
+
   DistanceMapParams p{};
   for (int a = 0; a < 3; ++a) p.reference[a] = origin_.reference[a];
   p.layer_res = res;
@@ -141,7 +151,7 @@ void DistanceMapRefraction::trace(const DeviceMesh& mesh, const cl::Buffer& vert
   cl::Kernel kernel = cl_.kernel("distance_maps.cl", "distance_maps");
   const uint64_t pixels = uint64_t(camera.width) * camera.height;
   cl_.launch("refraction", kernel, pixels, kGroup, make_render_camera(camera), primary_samples, layers,
-             environment, materials, cl_uint(material_count), p, end_samples, paths);
+             environment, distances, materials, cl_uint(material_count), p, end_samples, paths);
 }
 
 }  // namespace voxr

@@ -92,7 +92,7 @@ class DistanceMapRefraction {
   VisibilityRasterizer rasterizer_;
   DistanceMapOrigin origin_;
   RasterBins bins_;
-  GrowingBuffer peel_[2], face_samples_, layers_, environment_;
+  GrowingBuffer peel_[2], face_samples_, layers_, environment_, distances_;
 
   // Resolves `visibility` for `frame` and copies it to `out` at SurfaceSample `first`.
   void resolve_into(const DeviceMesh& mesh, const cl::Buffer& vertex_normals, const CameraFrame& frame,
