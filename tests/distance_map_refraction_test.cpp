@@ -53,6 +53,33 @@ float angle_deg(const glm::vec3& a, const glm::vec3& b) {
   return glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0f, 1.0f)));
 }
 
+TEST(DistanceMapRefraction, CubeFacesAreRightHandedAndSeeTheirOwnDirections) {
+  // Every face's basis is orthonormal with right = forward x up (CameraFrame's), and each texel centre's
+  // ray has its largest component along the face's forward axis (the kernel's face choice).
+  for (uint32_t face = 0; face < 6; ++face) {
+    const CameraFrame f = cube_face_frame(glm::vec3(0.5f, -1.0f, 2.0f), face, 8, 0.01f, 10.0f);
+    EXPECT_EQ(f.right, glm::cross(f.forward, f.up)) << "face " << face;
+    EXPECT_EQ(glm::dot(f.forward, f.up), 0.0f);
+    for (uint32_t y = 0; y < 8; ++y)
+      for (uint32_t x = 0; x < 8; ++x) {
+        const glm::vec3 d = f.ray_direction(float(x) + 0.5f, float(y) + 0.5f);
+        const int axis = face / 2;
+        EXPECT_GT(std::abs(d[axis]), std::abs(d[(axis + 1) % 3])) << "face " << face;
+        EXPECT_GT(std::abs(d[axis]), std::abs(d[(axis + 2) % 3])) << "face " << face;
+        EXPECT_GT(d[axis] * f.forward[axis], 0.0f) << "face " << face;
+      }
+  }
+}
+
+TEST(DistanceMapRefraction, ReferencePointIsTheDielectricsCentre) {
+  // The ball (radius 1 at the origin) and an opaque slab behind it: the reference point is the ball's
+  // bounds' centre, its sphere holds the ball's bounds, the scene's sphere the slab's far corners.
+  const DistanceMapOrigin o = distance_map_origin(scene(true), materials());
+  EXPECT_NEAR(glm::length(o.reference), 0.0f, 1e-5f);
+  EXPECT_NEAR(o.radius, 1.01f * std::sqrt(3.0f), 1e-4f);
+  EXPECT_NEAR(o.scene_radius, 1.01f * std::sqrt(4.0f + 4.0f + 9.0f), 1e-4f);
+}
+
 TEST(DistanceMapRefraction, PeelingMatchesTheSortedReferenceLayers) {
   // Three parallel quads seen from above: y = 1 (side 1), y = 0 (side 2), y = -1 (side 3), each its own
   // material (kind) so that the reference can raster each alone with the same triangle ids.

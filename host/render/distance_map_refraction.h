@@ -11,14 +11,15 @@
 // (rp_front_surface); per segment, a linear search along the ray in kDistanceMapSearchSteps steps compares
 // each ray point's distance from the reference point with each layer's stored distance in its direction; a
 // sign change is refined by kDistanceMapSecantSteps secant steps and accepted where the refined gap is
-// within a texel's footprint (else it was a depth discontinuity of the layer). The nearest layer hit
-// refracts (or mirrors on total internal reflection) by refraction.h's model: 1 - F (Schlick) per
-// refraction, Beer-Lambert per segment inside, media tracked by parity on a stack of 4; an environment-layer
-// hit ends the path there. Outside every medium the search continues, environment layer only, to the
-// scene's bounding sphere; nothing found is the environment. Failures the method has by construction, not
-// hidden: a surface hidden from the reference point behind `layers` others, or an opaque surface hidden
-// behind another from it, is not found (a path inside glass that finds no surface is VOXR_PATH_LOST);
-// surfaces closer than a search step apart along a ray may be skipped; max_events ends a path VOXR_PATH_LOST.
+// within a search step plus two texels' footprint (else it was a depth discontinuity of the layer). The
+// nearest layer hit refracts (or mirrors on total internal reflection) by refraction.h's model: 1 - F
+// (Schlick) per refraction, Beer-Lambert per segment inside, media tracked by parity on a stack of 4; an
+// environment-layer hit ends the path there. Outside every medium the search continues, environment layer
+// only, to the scene's bounding sphere; nothing found is the environment. Failures the method has by
+// construction, not hidden: a surface hidden from the reference point behind `layers` others, or an opaque
+// surface hidden behind another from it, is not found (a path inside glass that finds no surface is
+// VOXR_PATH_LOST); surfaces closer than a search step apart along a ray may be skipped; max_events ends a
+// path VOXR_PATH_LOST.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -71,7 +72,6 @@ class DistanceMapRefraction {
 
   // The scene of the next frames (as FrameRenderer::set_scene has it): places the reference point.
   void set_scene(const TriangleSoup& soup, const std::vector<Material>& materials);
-  const DistanceMapOrigin& origin() const { return origin_; }
 
   // Renders the layers (options.layers refractor layers and the environment layer, options.layer_res^2
   // texels per face) and traces every pixel of `camera`: its end SurfaceSample and RefractionPath, from
@@ -81,11 +81,6 @@ class DistanceMapRefraction {
   void trace(const DeviceMesh& mesh, const cl::Buffer& vertex_normals, const CameraFrame& camera,
              const cl::Buffer& materials, uint32_t material_count, const RefractionOptions& options,
              const cl::Buffer& primary_samples, cl::Buffer& end_samples, cl::Buffer& paths);
-
-  // After trace(): the refractor layers (layers * 6 * layer_res^2 SurfaceSample, layer-major, then face,
-  // row, column) and the environment layer (6 * layer_res^2), for checks.
-  const cl::Buffer& layer_samples() const { return layers_.buffer; }
-  const cl::Buffer& environment_samples() const { return environment_.buffer; }
 
  private:
   ClRuntime& cl_;
