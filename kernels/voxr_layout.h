@@ -213,6 +213,31 @@ typedef struct ImageSpaceParams {
   float scene_size;    /* the lookup's first guess where the exit point's pixel shows no opaque surface */
 } ImageSpaceParams;
 
+/* What distance_maps.cl needs besides its buffers (host/render/distance_map_refraction.h): the cube maps
+ * about `reference` (anchor-relative), face f's texel (x, y) at (f * layer_res + y) * layer_res + x, layer l
+ * of the refractor's maps starting at l * 6 * layer_res^2. */
+typedef struct DistanceMapParams {
+  float reference[3];
+  uint layer_res;     /* texels per cube face side */
+  uint layers;        /* refractor layers (depth-peeled) */
+  uint max_events;    /* interfaces met at most (<= VOXR_PATH_MAX_EVENTS) */
+  uint search_steps;  /* linear search steps per segment */
+  uint secant_steps;  /* secant refinement steps */
+  float radius;       /* the refractor's bounding sphere about the reference point */
+  float scene_radius; /* the whole scene's bounding sphere about the reference point */
+  float epsilon;      /* world units: where a search starts past the point it leaves */
+  float pad;
+} DistanceMapParams;
+
+/* The cube map's faces (host/render/distance_map_refraction.h): forward, right, up per face, in the order
+ * +x, -x, +y, -y, +z, -z; right = forward x up (CameraFrame's convention). A direction's face is its
+ * largest component's. */
+#define VOXR_CUBE_FACES                                                                            \
+  {                                                                                                \
+    {1, 0, 0, 0, 0, 1, 0, 1, 0}, {-1, 0, 0, 0, 0, -1, 0, 1, 0}, {0, 1, 0, -1, 0, 0, 0, 0, -1},     \
+        {0, -1, 0, -1, 0, 0, 0, 0, 1}, {0, 0, 1, -1, 0, 0, 0, 1, 0}, {0, 0, -1, 1, 0, 0, 0, 1, 0}, \
+  }
+
 /* Where a receiver finds its column and slab in a light's grid (host/render/light_frame.h). Orthographic
  * (directional light): grid = to_light * p. Frustum (point light): q = to_light * p is the point in the
  * light's view (z along the view, world units) and grid = ((q.x / q.z - u0) * inv_du,
@@ -339,6 +364,11 @@ typedef struct RenderCamera {
   OFFSET(VoxelRefractParams, max_steps) OFFSET(VoxelRefractParams, brick_dims)                           \
   SIZE(ImageSpaceParams) OFFSET(ImageSpaceParams, triangle_count) OFFSET(ImageSpaceParams, inward_count)  \
   OFFSET(ImageSpaceParams, iterations) OFFSET(ImageSpaceParams, scene_size)                               \
+  SIZE(DistanceMapParams) OFFSET(DistanceMapParams, reference) OFFSET(DistanceMapParams, layer_res)       \
+  OFFSET(DistanceMapParams, layers) OFFSET(DistanceMapParams, max_events)                                 \
+  OFFSET(DistanceMapParams, search_steps) OFFSET(DistanceMapParams, secant_steps)                         \
+  OFFSET(DistanceMapParams, radius) OFFSET(DistanceMapParams, scene_radius)                               \
+  OFFSET(DistanceMapParams, epsilon)                                                                      \
   SIZE(ShadowFrame) OFFSET(ShadowFrame, to_light) OFFSET(ShadowFrame, dims)                               \
   OFFSET(ShadowFrame, projective) OFFSET(ShadowFrame, u0) OFFSET(ShadowFrame, inv_dv)                     \
   OFFSET(ShadowFrame, depth_scale) OFFSET(ShadowFrame, voxel_size)                                        \

@@ -48,15 +48,17 @@ const std::string kSphere = std::string(VOXR_SOURCE_DIR) + "/data/scenes/glass-s
 
 TEST(BenchRefractionCli, TinyRunWritesRowsWithFiniteErrors) {
   const fs::path prefix = scratch() / "r";
-  const test::CliResult r = run_voxr("bench refraction --scenes " + kSphere +
-                                     " --methods voxel-multi-dda-smooth,image-space --res 32 --size 64x48 "
-                                     "--repeat 1 --warmup 0 --fresh 0 --out " +
-                                     prefix.string());
+  const test::CliResult r =
+      run_voxr("bench refraction --scenes " + kSphere +
+               " --methods voxel-multi-dda-smooth,image-space,distance-maps --res 32 --size 64x48 "
+               "--repeat 1 --warmup 0 --fresh 0 --out " +
+               prefix.string());
   ASSERT_EQ(r.code, 0) << r.err;
   const auto rows = read_csv(prefix.string() + ".csv");
-  ASSERT_EQ(rows.size(), 3u);
-  const std::vector<std::string> methods = {"reference-matched", "voxel-multi", "image-space"};
-  const std::vector<std::string> res = {"", "32", ""};
+  ASSERT_EQ(rows.size(), 4u);
+  const std::vector<std::string> methods = {"reference-matched", "voxel-multi", "image-space",
+                                            "distance-maps"};
+  const std::vector<std::string> res = {"", "32", "", ""};
   for (size_t i = 0; i < rows.size(); ++i) {
     const auto& row = rows[i];
     EXPECT_EQ(row.at("scene"), "glass-sphere");
@@ -78,9 +80,14 @@ TEST(BenchRefractionCli, TinyRunWritesRowsWithFiniteErrors) {
   EXPECT_LT(std::stod(rows[1].at("rmse")), 0.5);
   EXPECT_GT(std::stod(rows[1].at("refraction_ms")), 0.0);
   EXPECT_EQ(rows[0].at("psnr"), "inf");
+  // distance-maps' cost split: the layers and the tracing; the other methods render no layers.
+  EXPECT_GT(std::stod(rows[3].at("dm_layers_ms")), 0.0);
+  EXPECT_GT(std::stod(rows[3].at("refraction_ms")), 0.0);
+  EXPECT_EQ(std::stod(rows[1].at("dm_layers_ms")), 0.0);
   const std::string md = test::slurp(prefix.string() + ".md");
   EXPECT_NE(md.find("## glass-sphere"), std::string::npos) << md;
   EXPECT_NE(md.find("Machine load"), std::string::npos) << md;
+  EXPECT_NE(md.find("dm-layers ms"), std::string::npos) << md;
 }
 
 TEST(BenchRefractionCli, HelpIsForwardedFromVoxr) {

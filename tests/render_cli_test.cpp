@@ -60,10 +60,32 @@ TEST(RenderCli, CompareReferenceReportsErrorsAndWritesTheErrorImage) {
   EXPECT_NE(r.out.find("vs matched"), std::string::npos) << r.out;
 }
 
+TEST(RenderCli, DistanceMapOptionsAreCheckedAndReported) {
+  const std::string scene = std::string(VOXR_SOURCE_DIR) + "/data/scenes/glass-sphere.json";
+  const fs::path image = scratch() / "dm.png";
+  for (const char* bad :
+       {"--layers 0", "--layers 17", "--layer-res 4", "--layer-res 4096", "--dm-depth 0", "--dm-depth 33"}) {
+    const test::CliResult r =
+        run_voxr("render " + scene + " --refraction distance-maps " + bad + " -o " + image.string());
+    EXPECT_NE(r.code, 0) << bad;
+  }
+  const fs::path report = scratch() / "dm.json";
+  const test::CliResult r = run_voxr("render " + scene +
+                                     " --size 64x48 --shadow-res 64 --refraction distance-maps --layers 2 "
+                                     "--layer-res 32 --dm-depth 8 -o " +
+                                     image.string() + " --report " + report.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(test::slurp(report));
+  EXPECT_EQ(j["refraction_options"]["layers"], 2);
+  EXPECT_EQ(j["refraction_options"]["layer_res"], 32);
+  EXPECT_EQ(j["refraction_options"]["max_events"], 8);
+  EXPECT_TRUE(j["ms"]["stages"].contains("dm-layers")) << j["ms"].dump();
+}
+
 TEST(RenderCli, EveryRefractionMethodRendersTheGlassSphere) {
   const std::string scene = std::string(VOXR_SOURCE_DIR) + "/data/scenes/glass-sphere.json";
   for (const std::string method :
-       {"voxel-multi", "voxel-two", "image-space", "reference", "reference-full", "none"}) {
+       {"voxel-multi", "voxel-two", "image-space", "distance-maps", "reference", "reference-full", "none"}) {
     const fs::path image = scratch() / ("refract-" + method + ".exr");
     const fs::path report = scratch() / ("refract-" + method + ".json");
     const test::CliResult r = run_voxr("render " + scene +

@@ -24,6 +24,7 @@ static_assert(sizeof(SurfaceSample) == 64);
 static_assert(sizeof(RefractionPath) == 64);
 static_assert(sizeof(VoxelRefractParams) == 48);
 static_assert(sizeof(ImageSpaceParams) == 16);
+static_assert(sizeof(DistanceMapParams) == 48);
 static_assert(sizeof(ShadowFrame) == 96);
 static_assert(sizeof(RasterParams) == 96);
 static_assert(offsetof(RasterParams, cull) == 92, "the cull flag took the former pad word");

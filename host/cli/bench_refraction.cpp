@@ -56,14 +56,16 @@ struct MethodCase {
 
 const char* const kMethodHelp =
     "voxel-multi-STEP-NORMALS or voxel-two[-STEP-NORMALS] (STEP: dda or papers, NORMALS: smooth or voxel; "
-    "voxel-two alone is the default papers-smooth), image-space";
+    "voxel-two alone is the default papers-smooth), image-space, distance-maps (default layers and layer "
+    "resolution)";
 
 // Throws voxr::Error naming the method when it is none of kMethodHelp's forms.
 MethodCase parse_method_case(const std::string& label) {
   MethodCase m{label, {}, true};
   const auto unknown = [&] { fail("bench refraction: unknown method '{}' (known: {})", label, kMethodHelp); };
-  if (label == "image-space") {
-    m.options.method = RefractionMethod::kImageSpace;
+  if (label == "image-space" || label == "distance-maps") {
+    m.options.method =
+        label == "image-space" ? RefractionMethod::kImageSpace : RefractionMethod::kDistanceMaps;
     m.grid = false;
     return m;
   }
@@ -98,6 +100,7 @@ struct Row {
   uint32_t resolution = 0;  // 0: no grid (image-space, the reference)
   double frame_ms = 0, frame_min = 0, frame_max = 0;
   double refraction_ms = 0;
+  double layers_ms = 0;  // distance-maps: rendering the layers (the "dm-layers" stage)
   RefractionError error{};
   uint64_t grid_bytes = 0;
 };
@@ -242,13 +245,15 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
             shadows == ShadowMethod::kReference ? exact_shadows : HostTransmittance{};
         renderer.prepare(o);
         for (int w = 0; w < args.warmup; ++w) renderer.render(light, camera, o, host);
-        std::vector<double> ms, refraction_ms;
+        std::vector<double> ms, refraction_ms, layers_ms;
         FrameStats stats;
         for (int r = 0; r < args.repeat; ++r) {
           renderer.render(light, camera, o, host, &stats);
           ms.push_back(stats.frame_ms);
           const auto it = stats.stage_ms.find("refraction");
           refraction_ms.push_back(it == stats.stage_ms.end() ? 0.0 : it->second);
+          const auto layers = stats.stage_ms.find("dm-layers");
+          layers_ms.push_back(layers == stats.stage_ms.end() ? 0.0 : layers->second);
         }
         // The error frame: the same refraction with the exact shadows, so the error is refraction's alone.
         RenderOptions e = o;
@@ -269,14 +274,16 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
         row.frame_min = *std::min_element(ms.begin(), ms.end());
         row.frame_max = *std::max_element(ms.begin(), ms.end());
         row.refraction_ms = median(refraction_ms);
+        row.layers_ms = median(layers_ms);
         row.error = refraction_error(frame.image, frame.paths, exact.image, exact.paths);
         row.grid_bytes = stats.refraction_bytes;
         rows.push_back(row);
         progress_done();
         fmt::print(
-            "  {:<26} {:>4}: {:8.2f} ms [{:.2f}, {:.2f}] refraction {:.2f} ms  RMSE {:.4f} PSNR {} angle "
+            "  {:<26} {:>4}: {:8.2f} ms [{:.2f}, {:.2f}] refraction {:.2f} ms{}  RMSE {:.4f} PSNR {} angle "
             "{:.2f}/{:.2f} deg events {:.2f}% nonfinite {}  {:.2f} MiB (load {})\n",
             m.label, res_text(res), row.frame_ms, row.frame_min, row.frame_max, row.refraction_ms,
+            row.layers_ms > 0.0 ? fmt::format(" dm-layers {:.2f} ms", row.layers_ms) : std::string(),
             row.error.rmse, fmt_number(row.error.psnr, 2), row.error.angle_mean_deg, row.error.angle_p95_deg,
             100.0 * row.error.event_mismatch_share, row.error.nonfinite_pixels,
             double(row.grid_bytes) / (1 << 20), load_average());
@@ -301,12 +308,14 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
   const std::string load_after = load_average();
 
   std::ostringstream csv;
-  csv << "scene,triangles,method,step,normals,res,frame_ms,frame_ms_min,frame_ms_max,refraction_ms,rmse,psnr,"
+  csv << "scene,triangles,method,step,normals,res,frame_ms,frame_ms_min,frame_ms_max,refraction_ms,dm_layers_"
+         "ms,"
+         "rmse,psnr,"
          "angle_mean_deg,angle_p95_deg,angle_pixels,event_mismatch,refracted_pixels,nonfinite,grid_bytes\n";
   for (const Row& r : rows)
-    csv << fmt::format("{},{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{},{},{},{},{},{},{}\n", r.scene,
-                       r.triangles, r.method, r.step, r.normals, res_text(r.resolution), r.frame_ms,
-                       r.frame_min, r.frame_max, r.refraction_ms, fmt_number(r.error.rmse, 6),
+    csv << fmt::format("{},{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{},{},{},{},{},{},{}\n",
+                       r.scene, r.triangles, r.method, r.step, r.normals, res_text(r.resolution), r.frame_ms,
+                       r.frame_min, r.frame_max, r.refraction_ms, r.layers_ms, fmt_number(r.error.rmse, 6),
                        fmt_number(r.error.psnr, 3), fmt_number(r.error.angle_mean_deg, 4),
                        fmt_number(r.error.angle_p95_deg, 4), r.error.angle_pixels,
                        fmt_number(r.error.event_mismatch_share, 5), r.error.refracted_pixels,
@@ -321,7 +330,9 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
       device, driver, started, command_line(), load_before, load_after, args.size,
       shadow_method_info(shadows).name, args.shadow_res, args.repeat, args.warmup);
   md << "The frame is " << kFrameIncludes
-     << ". The refraction column is the trace kernel alone (the \"refraction\" stage). "
+     << ". The refraction column is the trace kernel alone (the \"refraction\" stage); dm-layers is "
+        "distance-maps' rendering of its cube maps every frame (the \"dm-layers\" stage: binning, peeling, "
+        "resolving). "
         "Errors are measured on one more frame of each method rendered with the exact (Embree) shadow "
         "transmittance at its path ends, against the matched reference (the voxel methods' own model, "
         "traced exactly with Embree), so they are refraction's alone, not the shadow method's. "
@@ -334,20 +345,20 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
       scene = r.scene;
       md << fmt::format(
           "\n## {} ({} triangles)\n\n| method | step | normals | res | frame ms | [min, max] | refraction ms "
-          "| "
+          "| dm-layers ms | "
           "RMSE | PSNR dB | angle mean deg | angle p95 deg | event mismatch | non-finite | grid MiB |\n"
-          "|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+          "|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
           r.scene, r.triangles);
     }
     md << fmt::format(
-        "| {} | {} | {} | {} | {:.2f} | [{:.2f}, {:.2f}] | {:.2f} | {} | {} | {} | {} | {}% | {} | {:.2f} "
-        "|\n",
+        "| {} | {} | {} | {} | {:.2f} | [{:.2f}, {:.2f}] | {:.2f} | {} | {} | {} | {} | {} | {}% | {} | "
+        "{:.2f} |\n",
         r.method, r.step.empty() ? "-" : r.step, r.normals.empty() ? "-" : r.normals,
         r.resolution ? std::to_string(r.resolution) : "-", r.frame_ms, r.frame_min, r.frame_max,
-        r.refraction_ms, fmt_number(r.error.rmse, 4), fmt_number(r.error.psnr, 2),
-        fmt_number(r.error.angle_mean_deg, 2), fmt_number(r.error.angle_p95_deg, 2),
-        fmt_number(100.0 * r.error.event_mismatch_share, 2), r.error.nonfinite_pixels,
-        double(r.grid_bytes) / (1 << 20));
+        r.refraction_ms, r.layers_ms > 0.0 ? fmt_number(r.layers_ms, 2) : "-", fmt_number(r.error.rmse, 4),
+        fmt_number(r.error.psnr, 2), fmt_number(r.error.angle_mean_deg, 2),
+        fmt_number(r.error.angle_p95_deg, 2), fmt_number(100.0 * r.error.event_mismatch_share, 2),
+        r.error.nonfinite_pixels, double(r.grid_bytes) / (1 << 20));
   }
   if (!precompute_table.empty())
     md << "\nImage-space's per-scene precompute, Wyman's d_N by ray casting (host, not in the frame):\n\n"

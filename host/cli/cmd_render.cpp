@@ -72,6 +72,9 @@ struct RenderArgs {
   std::string step = "papers";
   std::string normals = "smooth";
   float angle_threshold = 60.0f;
+  uint32_t layers = 4;
+  uint32_t layer_res = 128;
+  uint32_t dm_depth = VOXR_PATH_MAX_EVENTS;
   uint32_t frames = 1;
   std::optional<double> error_target;  // image RMSE against the reference (render_error_target.h)
   bool grids_given = false;            // --res or --shadow-res on the command line
@@ -112,6 +115,9 @@ RenderOptions render_options(const RenderArgs& args) {
   options.refraction.step = parse_step_rule(args.step);
   options.refraction.normals = parse_normal_kind(args.normals);
   options.refraction.angle_threshold_deg = args.angle_threshold;
+  options.refraction.layers = args.layers;
+  options.refraction.layer_res = args.layer_res;
+  options.refraction.max_events = args.dm_depth;
   options.keep_samples = args.compare_reference;
   return options;
 }
@@ -198,6 +204,10 @@ int run_render(const RenderArgs& args) {
                                     {"step", step_rule_info(options.refraction.step).name},
                                     {"normals", normal_kind_info(options.refraction.normals).name},
                                     {"angle_threshold_deg", options.refraction.angle_threshold_deg}};
+  if (options.refraction.method == RefractionMethod::kDistanceMaps)
+    report["refraction_options"] = {{"layers", options.refraction.layers},
+                                    {"layer_res", options.refraction.layer_res},
+                                    {"max_events", options.refraction.max_events}};
   ImageRgba image;
   std::vector<SurfaceSample> samples;
   std::vector<glm::vec3> transmittance;
@@ -457,6 +467,10 @@ int run_render(const RenderArgs& args) {
                  step_rule_info(options.refraction.step).name,
                  normal_kind_info(options.refraction.normals).name,
                  double(stats.refraction_bytes) / (1 << 20));
+    else if (options.refraction.method == RefractionMethod::kDistanceMaps)
+      fmt::print(" ({} layers + environment, {}x{} texels per cube face, at most {} interfaces)",
+                 options.refraction.layers, options.refraction.layer_res, options.refraction.layer_res,
+                 options.refraction.max_events);
     else if (asked_refraction != options.refraction.method)
       fmt::print(" (the scene has no dielectric)");
     fmt::print("\n");
@@ -595,6 +609,18 @@ Command add_render(CLI::App& app) {
          "voxel-multi: degrees a boundary voxel's normal must turn from the last refraction normal to "
          "count as a new interface within one boundary run")
       ->check(CLI::Range(0.0f, 180.0f))
+      ->capture_default_str();
+  sub->add_option("--layers", args->layers,
+                  "distance-maps: depth-peeled layers of the refractor's cube distance map (surfaces hidden "
+                  "from the reference point behind more are missed)")
+      ->check(CLI::Range(1u, kDistanceMapMaxLayers))
+      ->capture_default_str();
+  sub->add_option("--layer-res", args->layer_res, "distance-maps: texels per cube-map face side")
+      ->check(CLI::Range(kDistanceMapMinRes, kDistanceMapMaxRes))
+      ->capture_default_str();
+  sub->add_option("--dm-depth", args->dm_depth,
+                  "distance-maps: interfaces a path meets at most (then it is lost)")
+      ->check(CLI::Range(1u, uint32_t(VOXR_PATH_MAX_EVENTS)))
       ->capture_default_str();
   sub->add_option(
          "--frames", args->frames,

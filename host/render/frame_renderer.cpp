@@ -37,7 +37,8 @@ FrameRenderer::FrameRenderer(ClRuntime& cl)
       shadow_map_(cl),
       light_maps_(cl),
       voxel_refraction_(cl),
-      image_space_(cl, rasterizer_) {}
+      image_space_(cl, rasterizer_),
+      distance_maps_(cl) {}
 FrameRenderer::~FrameRenderer() = default;
 
 void FrameRenderer::prepare(const RenderOptions& options) {
@@ -46,6 +47,8 @@ void FrameRenderer::prepare(const RenderOptions& options) {
     for (const ProgramSpec& p : light_maps_.programs()) specs.push_back(p);
   if (options.refraction.method == RefractionMethod::kImageSpace)
     for (const ProgramSpec& p : image_space_.programs()) specs.push_back(p);
+  if (options.refraction.method == RefractionMethod::kDistanceMaps)
+    for (const ProgramSpec& p : distance_maps_.programs()) specs.push_back(p);
   specs.push_back({"shade.cl", {}});
   specs.push_back({"refract_none.cl", {}});
   cl_.build_programs(specs);
@@ -86,6 +89,7 @@ void FrameRenderer::set_scene(const TriangleSoup& soup, const std::vector<Materi
   vertex_normals_ = upload_vertex_normals(cl_, vertex_normals(soup));
   inward_distances_set_ = false;
   voxel_refraction_.set_scene(soup);
+  distance_maps_.set_scene(soup, materials);
 }
 
 RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame& camera,
@@ -159,6 +163,13 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
       cl::Buffer& e = ends_.ensure(cl_, pixels * sizeof(SurfaceSample), "refraction ends");
       image_space_.trace(*mesh_, vertex_normals_, camera, materials_buffer_, material_count_, samples_.buffer,
                          e, paths);
+      ends = &e;
+      break;
+    }
+    case RefractionMethod::kDistanceMaps: {
+      cl::Buffer& e = ends_.ensure(cl_, pixels * sizeof(SurfaceSample), "refraction ends");
+      distance_maps_.trace(*mesh_, vertex_normals_, camera, materials_buffer_, material_count_,
+                           options.refraction, samples_.buffer, e, paths);
       ends = &e;
       break;
     }

@@ -20,6 +20,7 @@
 #include "core/material.h"
 #include "core/triangle_soup.h"
 #include "render/camera_frame.h"
+#include "render/distance_map_refraction.h"
 #include "render/environment_map.h"
 #include "render/image_rgba.h"
 #include "render/image_space_refraction.h"
@@ -40,7 +41,8 @@ struct RenderOptions {
   RasterMode mode = RasterMode::kCenter;  // voxel: the light voxelizer's rule
   float bias = kDefaultShadowBias;        // slabs (or depth-map texels) towards the light
   float normal_offset = kDefaultNormalOffset;  // columns off the receiver's surface
-  // none, voxel-multi, voxel-two or image-space (the references render on the host: reference_refraction.h)
+  // none, voxel-multi, voxel-two, image-space or distance-maps (the references render on the host:
+  // reference_refraction.h)
   RefractionOptions refraction;
   bool keep_samples = false;  // read back the samples, their transmittance and the paths too
 };
@@ -99,6 +101,7 @@ class FrameRenderer {
   LightSpaceMaps light_maps_;
   VoxelRefraction voxel_refraction_;
   ImageSpaceRefraction image_space_;
+  DistanceMapRefraction distance_maps_;
   const TriangleSoup* soup_ = nullptr;
   std::vector<Material> materials_;
   uint32_t material_count_ = 0;

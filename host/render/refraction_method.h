@@ -9,7 +9,15 @@
 
 namespace voxr {
 
-enum class RefractionMethod { kVoxelMulti, kVoxelTwo, kImageSpace, kReference, kReferenceFull, kNone };
+enum class RefractionMethod {
+  kVoxelMulti,
+  kVoxelTwo,
+  kImageSpace,
+  kDistanceMaps,
+  kReference,
+  kReferenceFull,
+  kNone
+};
 // How a voxel march advances: the papers' fixed step (one voxel along the dominant axis, length h / cos
 // theta) or the exact voxel traversal (3-D DDA, Amanatides & Woo 1987).
 enum class StepRule { kPapers, kDda };
@@ -18,13 +26,15 @@ enum class StepRule { kPapers, kDda };
 enum class NormalKind { kVoxel, kSmooth };
 
 using RefractionMethodInfo = NamedValue<RefractionMethod>;
-inline constexpr std::array<RefractionMethodInfo, 6> kRefractionMethods = {{
+inline constexpr std::array<RefractionMethodInfo, 7> kRefractionMethods = {{
     {RefractionMethod::kVoxelMulti, "voxel-multi",
      "Chang & Lai PG 2011: Snell-law marching through the voxels, refracting at every boundary"},
     {RefractionMethod::kVoxelTwo, "voxel-two",
      "Chang & Lai TR 1688: exact front surface, back surface found by marching, two refractions"},
     {RefractionMethod::kImageSpace, "image-space",
      "Wyman 2005: front/back depth and normal buffers, d_V/d_N distance, nearby geometry by iteration"},
+    {RefractionMethod::kDistanceMaps, "distance-maps",
+     "GPU Gems 3 ch. 17: depth-peeled cube distance maps of the refractor, linear + secant search per ray"},
     {RefractionMethod::kReference, "reference",
      "exact, matched: Embree Whitted tracing of the refracted path with the voxel methods' model"},
     {RefractionMethod::kReferenceFull, "reference-full",
@@ -71,6 +81,11 @@ struct RefractionOptions {
   // A boundary voxel within the run just refracted at is a new interface only when its normal turns more
   // than this from the last refraction normal (PG 2011's angle threshold), in degrees.
   float angle_threshold_deg = 60.0f;
+  // distance-maps: refractor layers (depth-peeled cube maps), texels per cube face side, and the most
+  // interfaces a path meets (render/distance_map_refraction.h).
+  uint32_t layers = 4;
+  uint32_t layer_res = 128;
+  uint32_t max_events = 32;  // VOXR_PATH_MAX_EVENTS
 };
 
 }  // namespace voxr

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 #include "cl/scan.h"
 
@@ -62,8 +63,8 @@ RenderCamera make_render_camera(const CameraFrame& frame) {
   return c;
 }
 
-VisibilityRasterizer::VisibilityRasterizer(ClRuntime& cl, uint64_t record_budget_bytes)
-    : cl_(cl), record_budget_bytes_(record_budget_bytes) {
+VisibilityRasterizer::VisibilityRasterizer(ClRuntime& cl, uint64_t record_budget_bytes, std::string stage)
+    : cl_(cl), record_budget_bytes_(record_budget_bytes), stage_(std::move(stage)) {
   if (cl_.device().extensions.find("cl_khr_int64_extended_atomics") == std::string::npos)
     fail("{} lacks cl_khr_int64_extended_atomics, which the visibility buffer's 64-bit atomic min needs",
          cl_.device().label());
@@ -88,9 +89,9 @@ void VisibilityRasterizer::bin(const DeviceMesh& mesh, const RasterTarget& targe
   cl::Buffer& offsets = bins.offsets_.ensure(cl_, uint64_t(tris) * 8, "raster tile offsets");
   if (tris == 0) return;
   cl::Kernel setup = cl_.kernel("raster_setup.cl", "raster_setup", raster_defines());
-  cl_.launch("raster_setup", setup, tris, kGroup, bins.params_, mesh.positions(), mesh.triangles(), materials,
-             prims, counts);
-  bins.records_ = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, tris, "raster_scan");
+  cl_.launch(stage("raster_setup"), setup, tris, kGroup, bins.params_, mesh.positions(), mesh.triangles(),
+             materials, prims, counts);
+  bins.records_ = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, tris, stage("raster_scan"));
   const uint64_t budget = std::max<uint64_t>(1, record_budget_bytes_ / sizeof(RasterRecord));
   bins.batch_ = std::min({bins.records_, budget, uint64_t(0xffffffffu)});
 }
@@ -105,7 +106,7 @@ void VisibilityRasterizer::for_each_batch(RasterBins& bins,
     const uint32_t count = uint32_t(std::min(batch, bins.records_ - begin));
     if (!(single && bins.expanded_)) {
       cl::Kernel expand = cl_.kernel("raster_expand.cl", "raster_expand", raster_defines());
-      cl_.launch("raster_expand", expand, count, kGroup, cl_uint(bins.params_.triangle_count),
+      cl_.launch(stage("raster_expand"), expand, count, kGroup, cl_uint(bins.params_.triangle_count),
                  bins.offsets_.buffer, bins.prims_.buffer, cl_ulong(begin), cl_uint(count), records);
       bins.expanded_ = single;
     }
@@ -118,11 +119,26 @@ void VisibilityRasterizer::rasterize_depth(RasterBins& bins, GrowingBuffer& visi
   const uint64_t pixels = uint64_t(width) * height;
   cl::Buffer& words = visibility.ensure(cl_, pixels * 8, "the visibility buffer");
   cl::Kernel clear = cl_.kernel("raster_depth.cl", "raster_clear", raster_defines());
-  cl_.launch("raster_clear", clear, pixels, kGroup, words, cl_uint(pixels));
+  cl_.launch(stage("raster_clear"), clear, pixels, kGroup, words, cl_uint(pixels));
   cl::Kernel depth = cl_.kernel("raster_depth.cl", "raster_depth", raster_defines());
   for_each_batch(bins, [&](const cl::Buffer& records, uint32_t count) {
-    cl_.launch("raster_depth", depth, count, kGroup, cl_uint(width), cl_uint(height), bins.prims(), records,
-               cl_uint(count), words);
+    cl_.launch(stage("raster_depth"), depth, count, kGroup, cl_uint(width), cl_uint(height), bins.prims(),
+               records, cl_uint(count), words);
+  });
+}
+
+void VisibilityRasterizer::rasterize_depth_peel(RasterBins& bins, const cl::Buffer& previous,
+                                                uint32_t epsilon_ulps, GrowingBuffer& visibility) {
+  const uint32_t width = bins.width(), height = bins.height();
+  const uint64_t pixels = uint64_t(width) * height;
+  cl::Buffer& words = visibility.ensure(cl_, pixels * 8, "the peeled visibility buffer");
+  VOXR_CHECK(words() != previous());
+  cl::Kernel clear = cl_.kernel("raster_depth.cl", "raster_clear", raster_defines());
+  cl_.launch(stage("raster_clear"), clear, pixels, kGroup, words, cl_uint(pixels));
+  cl::Kernel peel = cl_.kernel("raster_depth.cl", "raster_depth_peel", raster_defines());
+  for_each_batch(bins, [&](const cl::Buffer& records, uint32_t count) {
+    cl_.launch(stage("raster_depth_peel"), peel, count, kGroup, cl_uint(width), cl_uint(height), bins.prims(),
+               records, cl_uint(count), previous, cl_uint(epsilon_ulps), words);
   });
 }
 
@@ -155,8 +171,8 @@ void VisibilityRasterizer::count_coverage(RasterBins& bins, GrowingBuffer& count
   cl_.fill_zero(out, bytes, "clear");
   cl::Kernel count = cl_.kernel("raster_count.cl", "raster_count", raster_defines());
   for_each_batch(bins, [&](const cl::Buffer& records, uint32_t n) {
-    cl_.launch("raster_count", count, n, kGroup, cl_uint(width), cl_uint(height), bins.prims(), records,
-               cl_uint(n), out);
+    cl_.launch(stage("raster_count"), count, n, kGroup, cl_uint(width), cl_uint(height), bins.prims(),
+               records, cl_uint(n), out);
   });
 }
 
@@ -167,7 +183,7 @@ void VisibilityRasterizer::resolve(const DeviceMesh& mesh, const cl::Buffer& ver
   VOXR_CHECK(frame.width <= VOXR_RASTER_MAX_SIDE && frame.height <= VOXR_RASTER_MAX_SIDE);
   cl::Buffer& out = samples.ensure(cl_, pixels * sizeof(SurfaceSample), "the surface samples");
   cl::Kernel resolve = cl_.kernel("raster_resolve.cl", "raster_resolve", raster_defines());
-  cl_.launch("raster_resolve", resolve, pixels, kGroup, make_render_camera(frame), visibility,
+  cl_.launch(stage("raster_resolve"), resolve, pixels, kGroup, make_render_camera(frame), visibility,
              mesh.positions(), mesh.triangles(), vertex_normals, cl_uint(mesh.triangle_count()), out);
 }
 

@@ -88,9 +88,12 @@ class RasterBins {
 
 class VisibilityRasterizer {
  public:
-  // Records (8 bytes each) of one batch are kept within `record_budget_bytes`. Throws voxr::Error naming the
-  // device when it lacks cl_khr_int64_extended_atomics (the visibility buffer's 64-bit atomic min).
-  explicit VisibilityRasterizer(ClRuntime& cl, uint64_t record_budget_bytes = uint64_t(128) << 20);
+  // Records (8 bytes each) of one batch are kept within `record_budget_bytes`. A non-empty `stage` names
+  // every kernel this rasterizer launches in the profiler (else each goes under its own name, raster_*).
+  // Throws voxr::Error naming the device when it lacks cl_khr_int64_extended_atomics (the visibility
+  // buffer's 64-bit atomic min).
+  explicit VisibilityRasterizer(ClRuntime& cl, uint64_t record_budget_bytes = uint64_t(128) << 20,
+                                std::string stage = {});
 
   // The programs bin, rasterize and resolve use, to build before timed work.
   std::vector<ProgramSpec> programs() const;
@@ -106,6 +109,12 @@ class VisibilityRasterizer {
 
   // The visibility buffer of `bins`: width * height 64-bit words, row 0 at the top (voxr_layout.h).
   void rasterize_depth(RasterBins& bins, GrowingBuffer& visibility);
+  // The next depth-peeling layer (Everitt 2001, "Interactive Order-Independent Transparency"): as
+  // rasterize_depth, but a pixel keeps only fragments farther than `previous` (the last layer's visibility
+  // buffer of the same bins) by more than `epsilon_ulps` steps of the float depth; a pixel empty in
+  // `previous` stays empty. `previous` and `visibility` must be different buffers.
+  void rasterize_depth_peel(RasterBins& bins, const cl::Buffer& previous, uint32_t epsilon_ulps,
+                            GrowingBuffer& visibility);
   // bin() and rasterize_depth() with bins of its own.
   void rasterize(const DeviceMesh& mesh, const RasterTarget& target, const cl::Buffer& materials,
                  uint32_t material_count, GrowingBuffer& visibility, RasterStats* stats = nullptr);
@@ -122,7 +131,11 @@ class VisibilityRasterizer {
  private:
   ClRuntime& cl_;
   uint64_t record_budget_bytes_;
+  std::string stage_;
   RasterBins bins_;  // rasterize()'s
+
+  // The profiler name of a launch of `kernel`: stage_ when set.
+  const std::string& stage(const std::string& kernel) const { return stage_.empty() ? kernel : stage_; }
 };
 
 // Unit vertex normals (render/vertex_normals.h) as float4 for resolve().
