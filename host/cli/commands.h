@@ -21,7 +21,9 @@ Command add_render(CLI::App& app);
 Command add_bench_shadows(CLI::App& bench);
 // `voxr bench refraction`, a subcommand of `bench`.
 Command add_bench_refraction(CLI::App& bench);
-// voxr-render holds render, bench shadows and bench refraction (VOXR_CLI_RENDER); voxr forwards them to it
-// (main.cpp) and registers them only for --help (render_forward.cpp).
+// `voxr bench pareto`, a subcommand of `bench`.
+Command add_bench_pareto(CLI::App& bench);
+// voxr-render holds render, bench shadows, bench refraction and bench pareto (VOXR_CLI_RENDER); voxr forwards
+// them to it (main.cpp) and registers them only for --help (render_forward.cpp).
 
 }  // namespace voxr::cli

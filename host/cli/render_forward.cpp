@@ -1,6 +1,6 @@
 // What `voxr` (without VOXR_CLI_RENDER) registers for the rendering commands: their names and summaries for
-// --help. main.cpp hands every `voxr render`, `voxr bench shadows` and `voxr bench refraction` to voxr-render
-// before parsing, so these are never run.
+// --help. main.cpp hands every `voxr render`, `voxr bench shadows`, `voxr bench refraction` and `voxr bench
+// pareto` to voxr-render before parsing, so these are never run.
 #include "cli/commands.h"
 #include "core/error.h"
 
@@ -31,6 +31,15 @@ Command add_bench_refraction(CLI::App& bench) {
   CLI::App* sub = bench.add_subcommand(
       "refraction",
       "Refraction methods x grid resolutions x scenes: frame time against error vs the matched reference");
+  sub->allow_extras();
+  return {sub, forwarded};
+}
+
+Command add_bench_pareto(CLI::App& bench) {
+  CLI::App* sub = bench.add_subcommand(
+      "pareto",
+      "Speed against accuracy: every voxelization, shadow and refraction method x resolution, the "
+      "Pareto fronts, charts and a page");
   sub->allow_extras();
   return {sub, forwarded};
 }
