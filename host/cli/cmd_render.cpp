@@ -17,12 +17,14 @@
 #include <fstream>
 #include <future>
 #include <memory>
+#include <optional>
 
 #include "bench/median.h"
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
 #include "cli/parse_args.h"
 #include "cli/prepared_runtime.h"
+#include "cli/render_error_target.h"
 #include "core/clock.h"
 #include "core/default_scene.h"
 #include "core/file_extension.h"
@@ -63,6 +65,8 @@ struct RenderArgs {
   std::string normals = "smooth";
   float angle_threshold = 60.0f;
   uint32_t frames = 1;
+  std::optional<double> error_target;  // image RMSE against the reference (render_error_target.h)
+  bool grids_given = false;            // --res or --shadow-res on the command line
   bool compare_reference = false;
   bool profile = false;
   bool quiet = false;
@@ -134,6 +138,10 @@ int run_render(const RenderArgs& args) {
         "--compare-reference measures a shadow or refraction method against the reference; with --shadows {} "
         "and --refraction {} there is nothing to measure",
         shadow_method_info(options.shadows).name, args.refraction);
+  if (args.error_target && host_refraction)
+    fail("--error-target chooses the grids of the device methods; --refraction {} has none", args.refraction);
+  if (args.error_target && args.grids_given)
+    fail("--error-target chooses --res and --shadow-res; leave them out");
   const bool tty = isatty(fileno(stderr)) && !args.quiet;
 
   std::future<PreparedRuntime<FrameRenderer>> background;
@@ -182,6 +190,8 @@ int run_render(const RenderArgs& args) {
   std::vector<RefractionPath> paths;
   std::vector<double> frame_ms;
   FrameStats stats;
+  std::optional<RenderTargetChoice> target;
+  FrameStats fixed_stats;  // --error-target: one frame on the fixed 512 grids it replaces
   std::unique_ptr<ReferenceScene> reference;
   const auto reference_scene = [&] {
     if (!reference) reference = std::make_unique<ReferenceScene>(soup, materials);
@@ -222,6 +232,14 @@ int run_render(const RenderArgs& args) {
       exact = [&](std::span<const SurfaceSample> s) {
         return reference_transmittance(*reference_scene(), light, s);
       };
+    if (args.error_target) {
+      target = choose_render_grids(*prepared.engine, *reference_scene(), render_mats, light, environment,
+                                   scene.camera, soup.anchor, bounds, width, height, *args.error_target,
+                                   &options, [&](const std::string& line) {
+                                     if (tty) fmt::print(stderr, "\r{:<60}\rerror target: {}", "", line);
+                                   });
+      if (tty) fmt::print(stderr, "\r{:<60}\rrendering...", "");
+    }
     for (uint32_t f = 0; f < args.frames; ++f) {
       RenderedFrame frame = prepared.engine->render(light, camera, options, exact, &stats);
       frame_ms.push_back(stats.frame_ms);
@@ -229,6 +247,14 @@ int run_render(const RenderArgs& args) {
       samples = std::move(frame.samples);
       transmittance = std::move(frame.transmittance);
       paths = std::move(frame.paths);
+    }
+    if (target) {
+      // The saving is measured: the frame on the fixed grids, rendered twice (the first grows the buffers).
+      RenderOptions fixed = options;
+      fixed.keep_samples = false;
+      if (target->refraction) fixed.refraction.resolution = kRenderTargetHighest;
+      if (target->shadows) fixed.shadow_resolution = kRenderTargetHighest;
+      for (int i = 0; i < 2; ++i) prepared.engine->render(light, camera, fixed, exact, &fixed_stats);
     }
     nlohmann::json stages = nlohmann::json::object();
     for (const auto& [name, ms] : stats.stage_ms) stages[name] = ms;
@@ -309,6 +335,28 @@ int run_render(const RenderArgs& args) {
                           {"reference_ms", ms_since(ref_start)}};
   }
   if (!compare.empty()) report["compare_reference"] = compare;
+  const uint64_t bytes = stats.device_bytes + stats.refraction_bytes;
+  const uint64_t fixed_bytes = fixed_stats.device_bytes + fixed_stats.refraction_bytes;
+  if (target) {
+    const auto search_json = [](const ResolutionChoice& c, double budget) {
+      nlohmann::json trials = nlohmann::json::array();
+      for (const ResolutionTrial& t : c.trials) trials.push_back({{"res", t.resolution}, {"rmse", t.error}});
+      return nlohmann::json{
+          {"budget", budget}, {"met", c.met}, {"res", c.resolution}, {"rmse", c.error}, {"trials", trials}};
+    };
+    nlohmann::json t = {
+        {"target", *args.error_target},
+        {"measure", "image RMSE (linear RGB) against the Embree reference"},
+        {"sample", {target->sample_width, target->sample_height}},
+        {"sample_rmse", target->sample_error},
+        {"search_ms", target->search_ms},
+        {"device_bytes", bytes},
+        {"fixed",
+         {{"res", kRenderTargetHighest}, {"frame_ms", fixed_stats.frame_ms}, {"device_bytes", fixed_bytes}}}};
+    if (target->refraction) t["refraction"] = search_json(*target->refraction, target->refraction_budget);
+    if (target->shadows) t["shadows"] = search_json(*target->shadows, target->shadows_budget);
+    report["error_target"] = t;
+  }
   write_image(image, args.output);
   report["ms"]["process"] = ms_since(process_start);
   if (!args.report.empty()) write_file_atomically(args.report, report.dump(2) + "\n");
@@ -341,13 +389,37 @@ int run_render(const RenderArgs& args) {
                frame_ms.size() == 1 ? "" : "s", *std::min_element(frame_ms.begin(), frame_ms.end()),
                *std::max_element(frame_ms.begin(), frame_ms.end()));
     if (!stages.empty()) fmt::print("stages ms  {} (host {:.2f})\n", stages, stats.host_ms);
+    if (target) {
+      const auto line = [](const char* what, const ResolutionChoice& c, double budget) {
+        std::string trials;
+        for (const ResolutionTrial& t : c.trials)
+          trials += fmt::format("{}{} -> {:.4f}", trials.empty() ? "" : ", ", t.resolution, t.error);
+        fmt::print("target     {} grid {}: RMSE {:.4f} {} budget {:.4f} (measured {})\n", what, c.resolution,
+                   c.error, c.met ? "within" : "NOT within (the least measured)", budget, trials);
+      };
+      if (target->refraction) line("refraction", *target->refraction, target->refraction_budget);
+      if (target->shadows) line("shadow", *target->shadows, target->shadows_budget);
+      fmt::print(
+          "target     RMSE {:.4f} against the reference on {}x{} pixels (target {:.4f}); search {:.0f} ms\n",
+          target->sample_error, target->sample_width, target->sample_height, *args.error_target,
+          target->search_ms);
+      fmt::print(
+          "vs 512     {:.1f} MiB and {:.2f} ms per frame on fixed 512 grids: saving {:.1f} MiB ({:.0f}%) and "
+          "{:.2f} ms ({:.0f}%)\n",
+          double(fixed_bytes) / (1 << 20), fixed_stats.frame_ms,
+          (double(fixed_bytes) - double(bytes)) / (1 << 20),
+          100.0 * (1.0 - double(bytes) / double(std::max<uint64_t>(fixed_bytes, 1))),
+          fixed_stats.frame_ms - median(frame_ms),
+          100.0 * (1.0 - median(frame_ms) / std::max(fixed_stats.frame_ms, 1e-9)));
+    }
     const auto number_text = [](const nlohmann::json& v) {
       return v.is_number() ? fmt::format("{:.2f}", v.get<double>()) : v.get<std::string>();
     };
     if (compare.contains("refraction")) {
       const auto& c = compare["refraction"];
       fmt::print(
-          "vs matched image RMSE {:.4f}, PSNR {} dB (exact shadows); exit direction error mean {} deg, 95th {} "
+          "vs matched image RMSE {:.4f}, PSNR {} dB (exact shadows); exit direction error mean {} deg, 95th "
+          "{} "
           "deg ({} pixels); event sequence differs on {:.2f}% of {} refracted pixels; {} non-finite pixels\n",
           c["rmse"].get<double>(), number_text(c["psnr"]), number_text(c["angle_mean_deg"]),
           number_text(c["angle_p95_deg"]), c["angle_pixels"].get<uint64_t>(),
@@ -424,6 +496,12 @@ Command add_render(CLI::App& app) {
                   "render the frame this many times in this process and report the median (warm) frame time")
       ->check(CLI::Range(1u, 100000u))
       ->capture_default_str();
+  sub->add_option(
+         "--error-target", args->error_target,
+         "choose the smallest refraction and shadow grids (16..512) whose frame is within image RMSE "
+         "E of the Embree reference, measured on a quarter of the pixels; reports the saving against "
+         "512 grids (render_error_target.h)")
+      ->check(CLI::Range(0.0, 1.0));
   sub->add_flag(
       "--compare-reference", args->compare_reference,
       "measure against the Embree reference: refraction against the matched reference (image, exit "
@@ -433,7 +511,10 @@ Command add_render(CLI::App& app) {
   sub->add_option("--report", args->report, "write a JSON report (times, light grid, errors)");
   sub->add_flag("--profile", args->profile, "print a per-kernel time table");
   sub->add_flag("-q,--quiet", args->quiet, "print nothing but errors");
-  return {sub, [args] { return run_render(*args); }};
+  return {sub, [args, sub] {
+            args->grids_given = sub->count("--res") + sub->count("--shadow-res") > 0;
+            return run_render(*args);
+          }};
 }
 
 }  // namespace voxr::cli

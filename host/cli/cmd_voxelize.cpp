@@ -14,6 +14,7 @@
 #include <fstream>
 #include <future>
 #include <memory>
+#include <optional>
 
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
@@ -24,9 +25,11 @@
 #include "core/default_scene.h"
 #include "core/mesh_loader.h"
 #include "core/mesh_topology.h"
+#include "core/resolution_search.h"
 #include "core/scene.h"
 #include "io/atomic_file.h"
 #include "io/volume_writer.h"
+#include "metrics/voxel_surface_error.h"
 #include "voxelize/voxelizer.h"
 
 namespace voxr::cli {
@@ -46,6 +49,7 @@ struct VoxelizeArgs {
   std::string device;
   std::string report;
   uint32_t rows_per_copy = 4;
+  std::optional<double> error_target;  // the surface error to meet (voxel_surface_error.h, chamfer)
   bool profile = false;
   bool quiet = false;
   bool view = false;
@@ -145,9 +149,39 @@ nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const 
   return report;
 }
 
+// The resolutions --error-target searches, and the fixed grid its saving is measured against.
+constexpr uint32_t kTargetLowest = 16, kTargetHighest = 1024, kTargetCompare = 512;
+constexpr uint32_t kTargetSamples = 50000;  // surface points and set voxels per measurement
+
+// --error-target: the smallest resolution whose surface voxelization (the user's method and rule, occupancy
+// only) lies within `target` of the triangles (voxel_surface_error: two-sided mean surface distance over
+// kTargetSamples surface points and up to as many set voxels, relative to the longest side), each candidate
+// voxelized and measured in full on the host.
+ResolutionChoice search_surface_resolution(Voxelizer& voxelizer, const TriangleSoup& soup,
+                                           const Bounds& bounds, const GridRequest& request,
+                                           const VoxelizeOptions& options, double target, bool tty) {
+  VoxelizeOptions probe = options;
+  probe.solid.reset();
+  probe.channels = ChannelSet::parse("occ");
+  probe.progress = nullptr;
+  return choose_resolution(target, kTargetLowest, kTargetHighest, [&](uint32_t r) {
+    GridRequest q = request;
+    q.resolution = r;
+    q.dims.reset();
+    const GridSpec g = fit_grid(bounds, q, soup.anchor);
+    const double e =
+        voxel_surface_error(voxelizer.run(soup, g, probe, nullptr, &bounds), g, soup, kTargetSamples)
+            .chamfer();
+    if (tty) fmt::print(stderr, "\rerror target: res {} -> {:.5f}{:<20}", r, e, "");
+    return e;
+  });
+}
+
 int run_voxelize(const VoxelizeArgs& args) {
   const auto process_start = Clock::now();
   if (args.res && !args.dims.empty()) fail("--res and --dims are exclusive; give one");
+  if (args.error_target && (args.res || !args.dims.empty()))
+    fail("--error-target chooses the resolution; leave out --res and --dims");
   if (!args.report.empty()) check_output_path(args.report);
   const std::filesystem::path viewer = args.view ? find_viewer(args.output) : std::filesystem::path();
   VoxelizeOptions options = voxelize_options(args);
@@ -183,9 +217,10 @@ int run_voxelize(const VoxelizeArgs& args) {
   }
   if (!args.dims.empty()) request.dims = parse_dims(args.dims, "--dims");
   if (!args.bounds.empty()) request.bounds = parse_bounds(args.bounds, "--bounds");
+  if (args.error_target) request.dims.reset();  // a scene's "grid" dims give way to the search
   fit_request_to_format(request, args.output);
-  const GridSpec grid = fit_grid(bounds, request, soup.anchor);
-  if (!args.output.empty()) check_volume_output(args.output, grid.dims);
+  GridSpec grid = fit_grid(bounds, request, soup.anchor);
+  if (!args.output.empty() && !args.error_target) check_volume_output(args.output, grid.dims);
 
   bool refit = false;
   if (options.solid) {
@@ -223,8 +258,31 @@ int run_voxelize(const VoxelizeArgs& args) {
   Voxelizer& voxelizer = *prepared.engine;
   if (refit) voxelizer.prepare(options);
 
+  std::optional<ResolutionChoice> choice;
+  const auto search_start = Clock::now();
+  if (args.error_target) {
+    choice = search_surface_resolution(voxelizer, soup, bounds, request, options, *args.error_target, tty);
+    request.resolution = choice->resolution;
+    request.dims.reset();
+    fit_request_to_format(request, args.output);
+    grid = fit_grid(bounds, request, soup.anchor);
+    if (!args.output.empty()) check_volume_output(args.output, grid.dims);
+  }
+  const double search_ms = args.error_target ? ms_since(search_start) : 0.0;
+
   VoxelizeStats stats;
   const VoxelGrid result = voxelizer.run(soup, grid, options, &stats, &bounds);
+  // The saving is measured: the same job on the fixed grid it replaces.
+  VoxelizeStats fixed;
+  GridSpec fixed_grid;
+  if (choice) {
+    GridRequest q = request;
+    q.resolution = kTargetCompare;
+    q.dims.reset();
+    fit_request_to_format(q, args.output);
+    fixed_grid = fit_grid(bounds, q, soup.anchor);
+    voxelizer.run(soup, fixed_grid, options, &fixed, &bounds);
+  }
   if (tty) fmt::print(stderr, "\r{:<40}\r", "");
   // An empty volume is written (it is the right answer for a grid beside the mesh), never silently.
   if (stats.voxels_set == 0 && stats.inside_voxels == 0)
@@ -240,7 +298,25 @@ int run_voxelize(const VoxelizeArgs& args) {
     phases.write_ms = ms_since(write_start);
   }
   phases.process_ms = ms_since(process_start);
-  const nlohmann::json report = make_report(args, cl, grid, options, stats, phases, result.channels);
+  nlohmann::json report = make_report(args, cl, grid, options, stats, phases, result.channels);
+  if (choice) {
+    nlohmann::json trials = nlohmann::json::array();
+    for (const ResolutionTrial& t : choice->trials)
+      trials.push_back({{"res", t.resolution}, {"error", t.error}});
+    report["error_target"] = {
+        {"target", *args.error_target},
+        {"measure", "voxel surface error: two-sided mean surface distance / longest side (chamfer)"},
+        {"met", choice->met},
+        {"res", choice->resolution},
+        {"error", choice->error},
+        {"trials", trials},
+        {"search_ms", search_ms},
+        {"fixed",
+         {{"res", kTargetCompare},
+          {"dims", {fixed_grid.dims.x, fixed_grid.dims.y, fixed_grid.dims.z}},
+          {"device_bytes", fixed.device_bytes},
+          {"wall_ms", fixed.wall_ms}}}};
+  }
   if (!args.report.empty()) {
     write_file_atomically(args.report, report.dump(2) + "\n");
   }
@@ -268,6 +344,23 @@ int run_voxelize(const VoxelizeArgs& args) {
       fmt::print("inside     {} voxels ({} questionable columns, {} flood rounds)\n", stats.inside_voxels,
                  stats.questionable_columns, stats.flood_iterations);
     fmt::print("memory     {:.1f} MiB on the device\n", double(stats.device_bytes) / (1 << 20));
+    if (choice) {
+      std::string trials;
+      for (const ResolutionTrial& t : choice->trials)
+        trials += fmt::format("{}{} -> {:.5f}", trials.empty() ? "" : ", ", t.resolution, t.error);
+      fmt::print(
+          "target     surface error {:.5f} {} at res {} (error {:.5f}; measured {}; search {:.0f} ms)\n",
+          *args.error_target, choice->met ? "met" : "NOT met (the least error measured)", choice->resolution,
+          choice->error, trials, search_ms);
+      fmt::print(
+          "vs res {}  {:.1f} MiB and {:.2f} ms wall on {} x {} x {}: saving {:.1f} MiB ({:.0f}%) and {:.2f} "
+          "ms\n",
+          kTargetCompare, double(fixed.device_bytes) / (1 << 20), fixed.wall_ms, fixed_grid.dims.x,
+          fixed_grid.dims.y, fixed_grid.dims.z,
+          (double(fixed.device_bytes) - double(stats.device_bytes)) / (1 << 20),
+          100.0 * (1.0 - double(stats.device_bytes) / double(std::max<uint64_t>(fixed.device_bytes, 1))),
+          fixed.wall_ms - stats.wall_ms);
+    }
     fmt::print(
         "time       upload {:.2f} ms + kernels {:.2f} ms + readback {:.2f} ms = {:.2f} ms (wall {:.2f} ms)\n",
         stats.upload_ms, stats.kernels_ms, stats.readback_ms, stats.total_ms(), stats.wall_ms);
@@ -318,6 +411,11 @@ Command add_voxelize(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--device", args->device, "OpenCL device P:D or name substring (also $VOXR_DEVICE)");
   sub->add_option("--report", args->report, "write a JSON report of counts and times");
+  sub->add_option("--error-target", args->error_target,
+                  "choose the smallest resolution (16..1024) whose surface lies within E of the triangles: "
+                  "two-sided mean surface distance over the longest side, measured per candidate; reports "
+                  "the saving against --res 512")
+      ->check(CLI::Range(0.0, 1.0));
   sub->add_option("--rows-per-copy", args->rows_per_copy, "rows one raster work item walks (tuning)")
       ->check(CLI::Range(1u, 4096u))
       ->capture_default_str();
