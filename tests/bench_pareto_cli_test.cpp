@@ -23,6 +23,7 @@ const std::string kSphere = std::string(VOXR_SOURCE_DIR) + "/data/scenes/glass-s
 TEST(BenchParetoCli, TinyRunWritesEveryEffectWithItsFront) {
   const fs::path dir = scratch() / "pareto";
   const fs::path page = dir / "docs" / "pareto.md";
+  fs::create_directories(dir);
   const test::CliResult r = run_voxr(
       "bench pareto --out " + (dir / "p").string() + " --doc " + page.string() +
       " --vox-meshes torus --vox-res 16 --vox-methods grid,slice-center --vox-samples 2000"

@@ -168,6 +168,9 @@ int run_bench_pareto(const BenchParetoArgs& args) {
     a.size = args.size;
     check_bench_refraction_args(a);
   }
+  const fs::path out_dir = fs::path(args.out).parent_path();
+  if (!out_dir.empty() && !fs::is_directory(out_dir))
+    fail("--out {}: folder '{}' does not exist", args.out, out_dir.string());
   const std::string load_before = load_average_text();
   ClRuntime cl(args.device);
   const std::string device = fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name,
