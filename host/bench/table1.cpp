@@ -69,7 +69,8 @@ std::vector<Table1Row> run_table1(ClRuntime& cl, const Table1Options& options) {
     for (uint32_t res : options.resolutions) {
       GridRequest request;
       request.resolution = res;
-      const GridSpec grid = fit_grid(mesh.soup.bounds(), request);
+      // In the soup's frame: its positions are relative to its anchor (voxel_surface_error reads it).
+      const GridSpec grid = fit_grid(mesh.soup.bounds(), request, mesh.soup.anchor);
       const VoxelGrid exact = options.accuracy ? reference_overlap(mesh.soup, grid) : VoxelGrid{};
       for (const std::string& method : options.methods) {
         std::vector<double> kernels, total;

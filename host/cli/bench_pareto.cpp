@@ -276,7 +276,7 @@ Command add_bench_pareto(CLI::App& bench) {
             BenchParetoArgs args = *a;
             if (*quick) {
               // One scene per effect, two resolutions, where the options did not say otherwise.
-              if (!vox_meshes->count()) args.vox_meshes = {"bunny"};
+              if (!vox_meshes->count()) args.vox_meshes = {"dragon"};
               if (!vox_res->count()) args.vox_res = {64, 256};
               if (!shadow_scenes->count()) args.shadow_scenes = {"default"};
               if (!shadow_res->count()) args.shadow_res = {64, 256};
