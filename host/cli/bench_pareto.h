@@ -22,20 +22,19 @@ namespace voxr::cli {
 
 struct BenchParetoArgs {
   std::vector<std::string> effects = {"voxelization", "shadows", "refraction"};
-  // Bench meshes (bench/bench_meshes.h): thin features (the dragon) and a smooth closed surface. The surface
-  // error's nearest-triangle search makes larger meshes (the bunny) cost seconds per case on 2 cores.
-  std::vector<std::string> vox_meshes = {"dragon", "torus"};
-  std::vector<uint32_t> vox_res = {64, 128, 256};
+  // Bench meshes (bench/bench_meshes.h): a smooth closed surface and thin features.
+  std::vector<std::string> vox_meshes = {"bunny", "dragon"};
+  std::vector<uint32_t> vox_res = {64, 128, 256, 512};
   std::vector<std::string> vox_methods;  // empty: every Table 1 method + the peers this build has
   std::vector<std::string> shadow_scenes = {"default", "data/scenes/foliage.json"};
   std::vector<uint32_t> shadow_res = {64, 128, 256, 512};
   std::vector<std::string> shadow_methods;  // empty: bench shadows' default methods
   std::vector<std::string> refraction_scenes = {"data/scenes/glass-sphere.json",
                                                 "data/scenes/bunny-glass-130.json"};
-  std::vector<uint32_t> refraction_res = {64, 128, 256};
+  std::vector<uint32_t> refraction_res = {64, 128, 256, 512};
   std::vector<std::string> refraction_methods;  // empty: bench refraction's default methods
   std::string size = "320x240";                 // shadows' and refraction's images
-  uint32_t surface_samples = 2000;              // voxel_surface_error's samples per case
+  uint32_t surface_samples = 10000;             // voxel_surface_error's samples per case
   int repeat = 3;
   int warmup = 1;
   std::string device;
