@@ -4,10 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
-#include <map>
-#include <sstream>
 #include <string>
-#include <vector>
 
 #include "cli_support.h"
 
@@ -15,34 +12,9 @@ namespace voxr {
 namespace {
 
 namespace fs = std::filesystem;
+using test::read_csv;
 using test::run_voxr;
 using test::scratch;
-
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> cells;
-  std::stringstream s(line);
-  std::string cell;
-  while (std::getline(s, cell, sep)) cells.push_back(cell);
-  if (!line.empty() && line.back() == sep) cells.push_back("");
-  return cells;
-}
-
-// The CSV as one column-name -> cell map per row.
-std::vector<std::map<std::string, std::string>> read_csv(const fs::path& path) {
-  std::stringstream text(test::slurp(path));
-  std::string line;
-  std::getline(text, line);
-  const std::vector<std::string> header = split(line, ',');
-  std::vector<std::map<std::string, std::string>> rows;
-  while (std::getline(text, line)) {
-    const std::vector<std::string> cells = split(line, ',');
-    EXPECT_EQ(cells.size(), header.size()) << line;
-    std::map<std::string, std::string> row;
-    for (size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
-    rows.push_back(row);
-  }
-  return rows;
-}
 
 const std::string kSphere = std::string(VOXR_SOURCE_DIR) + "/data/scenes/glass-sphere.json";
 

@@ -52,4 +52,33 @@ int count_lines(const std::string& text) {
   return int(std::count(text.begin(), text.end(), '\n'));
 }
 
+namespace {
+
+std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> cells;
+  std::stringstream s(line);
+  std::string cell;
+  while (std::getline(s, cell, sep)) cells.push_back(cell);
+  if (!line.empty() && line.back() == sep) cells.push_back("");
+  return cells;
+}
+
+}  // namespace
+
+std::vector<std::map<std::string, std::string>> read_csv(const fs::path& path) {
+  std::stringstream text(slurp(path));
+  std::string line;
+  std::getline(text, line);
+  const std::vector<std::string> header = split(line, ',');
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(text, line)) {
+    const std::vector<std::string> cells = split(line, ',');
+    EXPECT_EQ(cells.size(), header.size()) << line;
+    std::map<std::string, std::string> row;
+    for (size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 }  // namespace voxr::test

@@ -2,7 +2,9 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
+#include <vector>
 
 namespace voxr::test {
 
@@ -23,6 +25,10 @@ CliResult run_voxr(const std::string& args, const std::string& env = "");
 
 // Writes `content` to scratch()/name and returns the path.
 std::filesystem::path write_scratch_file(const std::string& name, const std::string& content);
+
+// A CSV file without quoted commas as one column-name -> cell map per row (EXPECTs every row to have the
+// header's number of cells).
+std::vector<std::map<std::string, std::string>> read_csv(const std::filesystem::path& path);
 
 // Number of '\n' in `text`.
 int count_lines(const std::string& text);

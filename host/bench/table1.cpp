@@ -68,7 +68,8 @@ std::vector<Table1Row> run_table1(ClRuntime& cl, const Table1Options& options) {
     for (uint32_t res : options.resolutions) {
       GridRequest request;
       request.resolution = res;
-      const GridSpec grid = fit_grid(mesh.soup.bounds(), request);
+      // In the soup's frame: its positions are relative to its anchor (voxel_surface_error reads it).
+      const GridSpec grid = fit_grid(mesh.soup.bounds(), request, mesh.soup.anchor);
       const VoxelGrid exact = options.accuracy ? reference_overlap(mesh.soup, grid) : VoxelGrid{};
       for (const std::string& method : options.methods) {
         std::vector<double> kernels, total;
@@ -88,6 +89,9 @@ std::vector<Table1Row> run_table1(ClRuntime& cl, const Table1Options& options) {
         row.res = res;
         row.dims = fmt::format("{}x{}x{}", grid.dims.x, grid.dims.y, grid.dims.z);
         row.kernels_ms = median(kernels);
+        row.kernels_min_ms = *std::min_element(kernels.begin(), kernels.end());
+        row.kernels_max_ms = *std::max_element(kernels.begin(), kernels.end());
+        row.grid_bytes = result.occ.size() * sizeof(result.occ[0]);
         row.total_ms = median(total);
         row.voxels = result.voxels_set;
         if (options.accuracy) {
@@ -98,6 +102,7 @@ std::vector<Table1Row> run_table1(ClRuntime& cl, const Table1Options& options) {
           row.crossings = a.crossings;
           row.tunnels = a.tunnels;
         }
+        if (options.surface_error) row.surface_error = options.surface_error(result, grid, mesh.soup);
         rows.push_back(row);
         if (options.progress)
           options.progress(

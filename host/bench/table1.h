@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -25,6 +26,10 @@ struct Table1Model {
 // A method from outside voxr_core (a CPU peer such as OpenVDB): voxelizes and fills stats->kernels_ms.
 using Table1Peer = std::function<VoxelGrid(const TriangleSoup&, const GridSpec&, VoxelizeStats*)>;
 
+// A distance of a voxelization from its triangles (e.g. metrics/voxel_surface_error.h's chamfer, relative to
+// the scene's size), measured on the last timed run of each case.
+using Table1SurfaceError = std::function<double(const VoxelGrid&, const GridSpec&, const TriangleSoup&)>;
+
 struct Table1Options {
   std::vector<Table1Model> models;
   std::vector<uint32_t> resolutions = {128, 256, 512};
@@ -33,6 +38,7 @@ struct Table1Options {
   int repeat = 3;
   int warmup = 1;
   bool accuracy = true;
+  Table1SurfaceError surface_error;                  // empty: not measured (Table1Row::surface_error NaN)
   std::function<void(const std::string&)> progress;  // one line per finished case
 };
 
@@ -42,8 +48,11 @@ struct Table1Row {
   uint32_t res = 0;
   std::string dims;
   double kernels_ms = 0.0, total_ms = 0.0;  // medians; total = upload + kernels + readback
+  double kernels_min_ms = 0.0, kernels_max_ms = 0.0;
+  uint64_t grid_bytes = 0;  // the dense occupancy bits read back
   uint64_t voxels = 0;
   uint64_t exact_voxels = 0, false_positives = 0, false_negatives = 0, crossings = 0, tunnels = 0;
+  double surface_error = std::numeric_limits<double>::quiet_NaN();  // Table1Options::surface_error's
 };
 
 // "hybrid-conservative", "slice-conservative", "slice-center", "grid", "slicemap-uniform", "slicemap-local".

@@ -50,7 +50,7 @@ bool has_dielectric(const std::vector<Material>& materials, const TriangleSoup& 
 }  // namespace
 
 int run_bench_animation(const BenchAnimationArgs& args) {
-  const std::string started = fmt::format("{:%Y-%m-%d %H:%M} UTC", fmt::gmtime(std::time(nullptr)));
+  const std::string started = utc_now();
   const std::array<double, 3> load_start = load_averages();
   ClRuntime cl(args.device);
   const std::string device = fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name,

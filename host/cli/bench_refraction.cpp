@@ -6,9 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -94,46 +92,29 @@ MethodCase parse_method_case(const std::string& label) {
   return m;
 }
 
-struct Row {
-  std::string scene, method, step, normals;
-  uint64_t triangles = 0;
-  uint32_t resolution = 0;  // 0: no grid (image-space, the reference)
-  double frame_ms = 0, frame_min = 0, frame_max = 0;
-  double refraction_ms = 0;
-  double layers_ms = 0;  // distance-maps: rendering the layers (the "dm-layers" stage)
-  RefractionError error{};
-  uint64_t grid_bytes = 0;
+using Row = RefractionBenchRow;
+
+// What check_bench_refraction_args reads from the arguments.
+struct CheckedArgs {
+  std::vector<MethodCase> methods;
+  ShadowMethod shadows = ShadowMethod::kNone;
+  uint32_t width = 0, height = 0;
 };
 
-std::string load_average() {
-  const std::array<double, 3> load = load_averages();
-  return fmt::format("{:.2f} {:.2f} {:.2f}", load[0], load[1], load[2]);
-}
-
-// The process's own command line, as the user typed it (voxr-render's argv is voxr's, exec'd).
-std::string command_line() {
-  std::ifstream f("/proc/self/cmdline", std::ios::binary);
-  std::string all((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  std::string line;
-  size_t start = 0;
-  bool first = true;
-  while (start < all.size()) {
-    size_t end = all.find('\0', start);
-    if (end == std::string::npos) end = all.size();
-    std::string word = all.substr(start, end - start);
-    if (first) word = "voxr";  // voxr-render, or a path to it
-    line += (first ? "" : " ") + word;
-    first = false;
-    start = end + 1;
+CheckedArgs check_args(const BenchRefractionArgs& args) {
+  CheckedArgs c;
+  for (const std::string& m : args.methods) c.methods.push_back(parse_method_case(m));
+  if (c.methods.empty()) fail("bench refraction: no methods (--methods)");
+  if (args.scenes.empty()) fail("bench refraction: no scenes (--scenes)");
+  c.shadows = parse_shadow_method(args.shadows);
+  const glm::uvec2 size = parse_size(args.size, "--size");
+  c.width = size.x;
+  c.height = size.y;
+  for (const std::string& s : args.scenes) {
+    std::error_code ec;
+    if (!fs::exists(s, ec)) fail("{}: no such file", s);
   }
-  return line;
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char text[64];
-  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&t));
-  return text;
+  return c;
 }
 
 std::string fmt_number(double v, int digits) {
@@ -148,19 +129,15 @@ std::string res_text(uint32_t res) {
 
 }  // namespace
 
-int run_bench_refraction(const BenchRefractionArgs& args) {
-  // Everything the command line says is checked before the device is opened.
-  std::vector<MethodCase> methods;
-  for (const std::string& m : args.methods) methods.push_back(parse_method_case(m));
-  if (methods.empty()) fail("bench refraction: no methods (--methods)");
-  if (args.scenes.empty()) fail("bench refraction: no scenes (--scenes)");
-  const ShadowMethod shadows = parse_shadow_method(args.shadows);
-  const glm::uvec2 size = parse_size(args.size, "--size");
-  const uint32_t width = size.x, height = size.y;
-  for (const std::string& s : args.scenes) {
-    std::error_code ec;
-    if (!fs::exists(s, ec)) fail("{}: no such file", s);
-  }
+void check_bench_refraction_args(const BenchRefractionArgs& args) {
+  check_args(args);
+}
+
+RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& args) {
+  const CheckedArgs checked = check_args(args);
+  const std::vector<MethodCase>& methods = checked.methods;
+  const ShadowMethod shadows = checked.shadows;
+  const uint32_t width = checked.width, height = checked.height;
   const bool any_image_space = std::any_of(methods.begin(), methods.end(), [](const MethodCase& m) {
     return m.options.method == RefractionMethod::kImageSpace;
   });
@@ -172,15 +149,9 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
     if (tty) fmt::print(stderr, "\r{:<78}\r", "");
   };
 
-  const std::string load_before = load_average();
-  ClRuntime cl(args.device);
-  const std::string device = fmt::format("{} ({})", cl.device().name, cl.device().platform_name);
-  const std::string driver = cl.device().driver_version;
-  const std::string started = utc_now();
-  fmt::print("device: {}, driver {}\n", device, driver);
-
-  std::vector<Row> rows;
-  std::string fresh_table, precompute_table;
+  RefractionBenchRun run;
+  std::vector<Row>& rows = run.rows;
+  std::string &fresh_table = run.fresh_table, &precompute_table = run.precompute_table;
   for (const std::string& scene_name : args.scenes) {
     const std::string label = scene_label(scene_name);
     progress(fmt::format("{}: reading", label));
@@ -194,7 +165,7 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
     const std::vector<RenderMaterial> render_mats = render_materials(materials);
     progress_done();
     fmt::print("{}: {} triangles, {}x{}, load {}\n", label, soup.triangle_count(), width, height,
-               load_average());
+               load_average_text());
     std::fflush(stdout);
 
     // The matched reference, once: what every method is measured against, and Embree's frame.
@@ -277,6 +248,7 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
         row.layers_ms = median(layers_ms);
         row.error = refraction_error(frame.image, frame.paths, exact.image, exact.paths);
         row.grid_bytes = stats.refraction_bytes;
+        row.load = load_averages()[0];
         rows.push_back(row);
         progress_done();
         fmt::print(
@@ -286,7 +258,7 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
             row.layers_ms > 0.0 ? fmt::format(" dm-layers {:.2f} ms", row.layers_ms) : std::string(),
             row.error.rmse, fmt_number(row.error.psnr, 2), row.error.angle_mean_deg, row.error.angle_p95_deg,
             100.0 * row.error.event_mismatch_share, row.error.nonfinite_pixels,
-            double(row.grid_bytes) / (1 << 20), load_average());
+            double(row.grid_bytes) / (1 << 20), load_average_text());
         std::fflush(stdout);
       }
     }
@@ -305,7 +277,22 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
     }
   }
   progress_done();
-  const std::string load_after = load_average();
+  return run;
+}
+
+int run_bench_refraction(const BenchRefractionArgs& args) {
+  // Everything the command line says is checked before the device is opened.
+  check_bench_refraction_args(args);
+  const std::string load_before = load_average_text();
+  ClRuntime cl(args.device);
+  const std::string device = fmt::format("{} ({})", cl.device().name, cl.device().platform_name);
+  const std::string driver = cl.device().driver_version;
+  const std::string started = utc_now();
+  fmt::print("device: {}, driver {}\n", device, driver);
+  const RefractionBenchRun run = measure_refraction(cl, args);
+  const std::vector<Row>& rows = run.rows;
+  const std::string &fresh_table = run.fresh_table, &precompute_table = run.precompute_table;
+  const std::string load_after = load_average_text();
 
   std::ostringstream csv;
   csv << "scene,triangles,method,step,normals,res,frame_ms,frame_ms_min,frame_ms_max,refraction_ms,dm_layers_"
@@ -328,7 +315,7 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
       "{} before, {} after\n- Image {}, shadows {} at shadow resolution {}. Warm frames: median of {} after "
       "{} warm-up [min, max].\n\n",
       device, driver, started, command_line(), load_before, load_after, args.size,
-      shadow_method_info(shadows).name, args.shadow_res, args.repeat, args.warmup);
+      shadow_method_info(parse_shadow_method(args.shadows)).name, args.shadow_res, args.repeat, args.warmup);
   md << "The frame is " << kFrameIncludes
      << ". The refraction column is the trace kernel alone (the \"refraction\" stage); dm-layers is "
         "distance-maps' rendering of its cube maps every frame (the \"dm-layers\" stage: binning, peeling, "

@@ -22,6 +22,9 @@
 #include <string>
 #include <vector>
 
+#include "cl/cl_runtime.h"
+#include "metrics/refraction_metrics.h"
+
 namespace voxr::cli {
 
 struct BenchRefractionArgs {
@@ -46,6 +49,35 @@ struct BenchRefractionArgs {
   int fresh = 3;
 };
 
+// One measured case: a method at a grid resolution on a scene, or the scene's matched reference (method
+// "reference-matched").
+struct RefractionBenchRow {
+  std::string scene, method, step, normals;  // step, normals: empty without a grid
+  uint64_t triangles = 0;
+  uint32_t resolution = 0;                            // 0: no grid (image-space, the reference)
+  double frame_ms = 0, frame_min = 0, frame_max = 0;  // warm frame wall ms: median, min, max
+  double refraction_ms = 0;                           // the trace kernel alone, median
+  double layers_ms = 0;     // distance-maps: rendering the layers (the "dm-layers" stage), median
+  RefractionError error{};  // against the matched reference, exact shadows
+  uint64_t grid_bytes = 0;
+  double load = 0;  // 1-minute load average when the case finished
+};
+
+struct RefractionBenchRun {
+  std::vector<RefractionBenchRow> rows;  // per scene: the reference, then methods x resolutions
+  std::string fresh_table;               // Markdown rows of the fresh processes (empty when args.fresh is 0)
+  std::string precompute_table;          // Markdown rows of image-space's d_N ray casting per scene
+};
+
+// Throws voxr::Error naming what is wrong when a method, the shadow method, the size or a scene file is not
+// valid; touches no device.
+void check_bench_refraction_args(const BenchRefractionArgs& args);
+
+// Runs the measurements on `cl`'s device, printing one line per case. args.out is not used. Throws as
+// check_bench_refraction_args does.
+RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& args);
+
+// measure_refraction, then OUT.csv, OUT.md and the charts.
 int run_bench_refraction(const BenchRefractionArgs& args);
 
 }  // namespace voxr::cli

@@ -59,16 +59,7 @@ MethodCase parse_method_case(const std::string& label) {
   return m;
 }
 
-struct Row {
-  std::string scene, method, mode;
-  uint32_t resolution = 0;
-  double frame_ms = 0, frame_min = 0, frame_max = 0;
-  TransmittanceError error{};
-  double psnr = 0;
-  std::string light_grid;
-  uint64_t device_bytes = 0;
-  uint64_t triangles = 0;
-};
+using Row = ShadowBenchRow;
 
 std::string fmt_psnr(double p) {
   return std::isfinite(p) ? fmt::format("{:.2f}", p) : "inf";
@@ -76,18 +67,15 @@ std::string fmt_psnr(double p) {
 
 }  // namespace
 
-int run_bench_shadows(const BenchShadowsArgs& args) {
-  ClRuntime cl(args.device);
-  const std::string device = fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name,
-                                         cl.device().driver_version);
-  fmt::print("device: {}\n", device);
+ShadowBenchRun measure_shadows(ClRuntime& cl, const BenchShadowsArgs& args) {
   const glm::uvec2 size = parse_size(args.size, "--size");
   const uint32_t width = size.x, height = size.y;
   std::vector<MethodCase> methods;
   for (const std::string& m : args.methods) methods.push_back(parse_method_case(m));
 
-  std::vector<Row> rows;
-  std::string fresh_table;
+  ShadowBenchRun run;
+  std::vector<Row>& rows = run.rows;
+  std::string& fresh_table = run.fresh_table;
   for (const std::string& scene_name : args.scenes) {
     Scene scene = scene_name == "default" ? default_scene() : load_input(scene_name);
     const std::vector<Material> materials = scene.materials;
@@ -165,12 +153,13 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
         row.light_grid = stats.light.describe();
         row.device_bytes = stats.device_bytes;
         row.triangles = soup.triangle_count();
+        row.load = load_averages()[0];
         rows.push_back(row);
         fmt::print(
             "  {:<18} {:>4}: {:8.2f} ms [{:.2f}, {:.2f}]  RMSE {:.4f} max {:.3f} >0.05 {:.2f}%  PSNR {} "
             "({}; load {:.2f})\n",
             m.label, res, row.frame_ms, row.frame_min, row.frame_max, row.error.rmse, row.error.max_abs,
-            100.0 * row.error.share_over_threshold, fmt_psnr(row.psnr), row.light_grid, load_averages()[0]);
+            100.0 * row.error.share_over_threshold, fmt_psnr(row.psnr), row.light_grid, row.load);
         std::fflush(stdout);
       }
     }
@@ -186,6 +175,17 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
       fmt::print("  fresh `voxr render --shadows voxel --shadow-res 256`: {:.0f} ms\n", median(wall));
     }
   }
+  return run;
+}
+
+int run_bench_shadows(const BenchShadowsArgs& args) {
+  ClRuntime cl(args.device);
+  const std::string device = fmt::format("{} ({}, driver {})", cl.device().name, cl.device().platform_name,
+                                         cl.device().driver_version);
+  fmt::print("device: {}\n", device);
+  const ShadowBenchRun run = measure_shadows(cl, args);
+  const std::vector<Row>& rows = run.rows;
+  const std::string& fresh_table = run.fresh_table;
 
   std::ostringstream csv;
   csv << "scene,method,mode,resolution,frame_ms,frame_ms_min,frame_ms_max,rmse,max_abs,share_over_0.05,psnr,"

@@ -17,6 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "cl/cl_runtime.h"
+#include "metrics/image_metrics.h"
+
 namespace voxr::cli {
 
 struct BenchShadowsArgs {
@@ -32,6 +35,30 @@ struct BenchShadowsArgs {
   int fresh = 3;
 };
 
+// One measured case: a method at a shadow resolution on a scene, or the scene's Embree reference (method
+// "reference", resolution 0).
+struct ShadowBenchRow {
+  std::string scene, method, mode;  // mode: the raster mode of the voxel method, else "-"
+  uint32_t resolution = 0;
+  double frame_ms = 0, frame_min = 0, frame_max = 0;  // warm frame wall ms: median, min, max
+  TransmittanceError error{};                         // at the visible receivers against Embree
+  double psnr = 0;                                    // dB, of the image against the exact transmittance
+  std::string light_grid;
+  uint64_t device_bytes = 0;
+  uint64_t triangles = 0;
+  double load = 0;  // 1-minute load average when the case finished
+};
+
+struct ShadowBenchRun {
+  std::vector<ShadowBenchRow> rows;  // per scene: the reference, then methods x resolutions
+  std::string fresh_table;           // Markdown rows of the fresh processes (empty when args.fresh is 0)
+};
+
+// Runs the measurements on `cl`'s device, printing one line per case. args.out is not used. Throws
+// voxr::Error for an unknown method or an unreadable scene.
+ShadowBenchRun measure_shadows(ClRuntime& cl, const BenchShadowsArgs& args);
+
+// measure_shadows, then OUT.csv, OUT.md and the charts.
 int run_bench_shadows(const BenchShadowsArgs& args);
 
 }  // namespace voxr::cli

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 
@@ -21,6 +22,36 @@ std::array<double, 3> load_averages() {
   std::ifstream in("/proc/loadavg");
   in >> load[0] >> load[1] >> load[2];
   return load;
+}
+
+std::string load_average_text() {
+  const std::array<double, 3> load = load_averages();
+  return fmt::format("{:.2f} {:.2f} {:.2f}", load[0], load[1], load[2]);
+}
+
+std::string command_line() {
+  std::ifstream f("/proc/self/cmdline", std::ios::binary);
+  std::string all((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  std::string line;
+  size_t start = 0;
+  bool first = true;
+  while (start < all.size()) {
+    size_t end = all.find('\0', start);
+    if (end == std::string::npos) end = all.size();
+    std::string word = all.substr(start, end - start);
+    if (first) word = "voxr";  // voxr-render, or a path to it
+    line += (first ? "" : " ") + word;
+    first = false;
+    start = end + 1;
+  }
+  return line;
+}
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  char text[64];
+  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&t));
+  return text;
 }
 
 std::string scene_label(const std::string& scene) {

@@ -12,6 +12,16 @@ namespace voxr::cli {
 // /proc/loadavg's 1, 5 and 15 minute averages; -1 where it cannot be read.
 std::array<double, 3> load_averages();
 
+// The three load averages as "1.23 0.98 0.75" (Markdown and CSV cells).
+std::string load_average_text();
+
+// The process's own command line as the user typed it, the program named "voxr" (voxr-render's argv is
+// voxr's, exec'd).
+std::string command_line();
+
+// The current time as "2026-11-30 18:40:00 UTC".
+std::string utc_now();
+
 // A scene's label in tables: "default" for the built-in scene, else the file's stem.
 std::string scene_label(const std::string& scene);
 

@@ -1,7 +1,7 @@
 // voxr bench: voxelize (fresh process, job and frame figures: cli/bench_voxelize.h), table1 (the papers'
-// Table 1, every method), solid (the solid fill modes); shadows, refraction, stability and animation
-// (cli/bench_shadows.h, cli/bench_refraction.h, cli/bench_stability.h, cli/bench_animation.h) live in
-// voxr-render.
+// Table 1, every method), solid (the solid fill modes); shadows, refraction, stability, animation and pareto
+// (cli/bench_shadows.h, cli/bench_refraction.h, cli/bench_stability.h, cli/bench_animation.h,
+// cli/bench_pareto.h) live in voxr-render.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -21,13 +21,6 @@
 namespace voxr::cli {
 
 namespace {
-
-// The core methods plus the CPU peers this build has.
-std::vector<std::string> default_table1_methods() {
-  std::vector<std::string> methods = table1_methods();
-  if (openvdb_peer_available()) methods.push_back("openvdb");
-  return methods;
-}
 
 void print_line(const std::string& line) {
   fmt::print("{}\n", line);
@@ -50,7 +43,7 @@ void write_report(const std::string& prefix, const std::vector<std::pair<std::st
 struct Table1Args {
   std::vector<std::string> models;  // LABEL=MESH or MESH; empty: the papers' six sizes
   std::vector<uint32_t> resolutions = {128, 256, 512};
-  std::vector<std::string> methods = default_table1_methods();
+  std::vector<std::string> methods = table1_methods_with_peers();
   std::string device;
   std::string out = "table1";
   int repeat = 3;
@@ -72,12 +65,7 @@ int run_bench_table1(const Table1Args& args) {
   }
   options.resolutions = args.resolutions;
   options.methods = args.methods;
-  if (std::find(options.methods.begin(), options.methods.end(), "openvdb") != options.methods.end()) {
-    std::optional<Table1Peer> peer = load_openvdb_peer();
-    if (!peer)
-      fail("method openvdb: libvoxr_openvdb_peer.so is not beside voxr (install libopenvdb-dev, rebuild)");
-    options.peers["openvdb"] = std::move(*peer);
-  }
+  add_table1_peers(options);
   options.repeat = args.repeat;
   options.warmup = args.warmup;
   options.accuracy = !args.no_accuracy;
@@ -174,11 +162,13 @@ Command add_bench(CLI::App& app) {
   const Command refraction = add_bench_refraction(*sub);
   const Command stability = add_bench_stability(*sub);
   const Command animation = add_bench_animation(*sub);
-  return {sub, [args, vox, table, t1, solid, so, shadows, refraction, stability, animation] {
+  const Command pareto = add_bench_pareto(*sub);
+  return {sub, [args, vox, table, t1, solid, so, shadows, refraction, stability, animation, pareto] {
             if (shadows.app->parsed()) return shadows.run();
             if (refraction.app->parsed()) return refraction.run();
             if (stability.app->parsed()) return stability.run();
             if (animation.app->parsed()) return animation.run();
+            if (pareto.app->parsed()) return pareto.run();
             if (vox->parsed()) return run_bench_voxelize(*args);
             if (t1->parsed()) return run_bench_table1(*table);
             if (so->parsed()) return run_bench_solid(*solid);

@@ -25,8 +25,9 @@ Command add_bench_refraction(CLI::App& bench);
 Command add_bench_stability(CLI::App& bench);
 // `voxr bench animation`, a subcommand of `bench`.
 Command add_bench_animation(CLI::App& bench);
-// voxr-render holds render, bench shadows, bench refraction, bench stability and bench animation
-// (VOXR_CLI_RENDER); voxr forwards them to it (main.cpp) and registers them only for --help
-// (render_forward.cpp).
+// `voxr bench pareto`, a subcommand of `bench`.
+Command add_bench_pareto(CLI::App& bench);
+// voxr-render holds render and bench shadows, refraction, stability, animation and pareto (VOXR_CLI_RENDER);
+// voxr forwards them to it (main.cpp) and registers them only for --help (render_forward.cpp).
 
 }  // namespace voxr::cli

@@ -62,8 +62,9 @@ int parse_error_exit(const CLI::App& app, const CLI::ParseError& e) {
 #ifndef VOXR_CLI_RENDER
 bool renders(int argc, char** argv) {
   const std::string first = argc > 1 ? argv[1] : "", second = argc > 2 ? argv[2] : "";
-  return first == "render" || (first == "bench" && (second == "shadows" || second == "refraction" ||
-                                                    second == "stability" || second == "animation"));
+  return first == "render" ||
+         (first == "bench" && (second == "shadows" || second == "refraction" || second == "stability" ||
+                               second == "animation" || second == "pareto"));
 }
 #endif
 

@@ -2,9 +2,11 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "cli/process.h"
+#include "core/error.h"
 #include "peers/openvdb_peer.h"
 
 namespace voxr::cli {
@@ -49,6 +51,20 @@ std::optional<Table1Peer> load_openvdb_peer() {
     }
     return out;
   });
+}
+
+std::vector<std::string> table1_methods_with_peers() {
+  std::vector<std::string> methods = table1_methods();
+  if (openvdb_peer_available()) methods.push_back("openvdb");
+  return methods;
+}
+
+void add_table1_peers(Table1Options& options) {
+  if (std::find(options.methods.begin(), options.methods.end(), "openvdb") == options.methods.end()) return;
+  std::optional<Table1Peer> peer = load_openvdb_peer();
+  if (!peer)
+    fail("method openvdb: libvoxr_openvdb_peer.so is not beside voxr (install libopenvdb-dev, rebuild)");
+  options.peers["openvdb"] = std::move(*peer);
 }
 
 }  // namespace voxr::cli

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "bench/table1.h"
 
@@ -13,5 +15,12 @@ bool openvdb_peer_available();
 
 // The peer, or nothing when the plugin is not there. Throws voxr::Error when it is there but cannot load.
 std::optional<Table1Peer> load_openvdb_peer();
+
+// table1_methods() plus "openvdb" when the plugin is there: every voxelization method this build has.
+std::vector<std::string> table1_methods_with_peers();
+
+// Loads the peers `options.methods` names into options.peers. Throws voxr::Error when "openvdb" is named and
+// the plugin is not there.
+void add_table1_peers(Table1Options& options);
 
 }  // namespace voxr::cli

@@ -1,6 +1,6 @@
 // What `voxr` (without VOXR_CLI_RENDER) registers for the rendering commands: their names and summaries for
-// --help. main.cpp hands every `voxr render` and `voxr bench shadows|refraction|stability|animation` to
-// voxr-render before parsing, so these are never run.
+// --help. main.cpp hands every `voxr render` and `voxr bench shadows|refraction|stability|animation|pareto`
+// to voxr-render before parsing, so these are never run.
 #include "cli/commands.h"
 #include "core/error.h"
 
@@ -46,6 +46,15 @@ Command add_bench_stability(CLI::App& bench) {
 Command add_bench_animation(CLI::App& bench) {
   CLI::App* sub = bench.add_subcommand(
       "animation", "Deforming scenes re-voxelized every frame: frame rate, per-stage times, fresh process");
+  sub->allow_extras();
+  return {sub, forwarded};
+}
+
+Command add_bench_pareto(CLI::App& bench) {
+  CLI::App* sub = bench.add_subcommand(
+      "pareto",
+      "Speed against accuracy: every voxelization, shadow and refraction method x resolution, the "
+      "Pareto fronts, charts and a page");
   sub->allow_extras();
   return {sub, forwarded};
 }
