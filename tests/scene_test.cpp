@@ -217,7 +217,7 @@ TEST(Scene, MeshErrorsNameTheMeshKey) {
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()),
               fmt::format("{}: 'meshes[1].file' could not be loaded: {}: line 2: vertex "
-                          "coordinate 'nan' is not a finite number",
+                          "coordinate 'nan' is not a finite number (of magnitude at most 1e+30)",
                           file.string(), (dir.path() / "broken.obj").string()));
   }
   EXPECT_THROW(load_scene(dir.path() / "absent.json"), Error);

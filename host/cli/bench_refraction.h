@@ -37,7 +37,8 @@ struct BenchRefractionArgs {
                                       "voxel-multi-papers-smooth",
                                       "voxel-multi-papers-voxel",
                                       "voxel-two",
-                                      "image-space"};
+                                      "image-space",
+                                      "distance-maps"};
   std::vector<uint32_t> resolutions = {64, 128, 256, 512};
   std::string shadows = "voxel";
   uint32_t shadow_res = 256;

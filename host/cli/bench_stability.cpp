@@ -89,7 +89,7 @@ Command add_bench_stability(CLI::App& bench) {
       "stability",
       "The stability suite: every method on every failure mode, bounds checked -> docs/stability.md");
   sub->add_flag("--full", args->full, "the full cases (default: the small versions the tests run)");
-  sub->add_option("--family", args->families, "run these families only (voxelization, rendering, inputs)")
+  sub->add_option("--family", args->families, "run these families only (voxelization, rendering, temporal, inputs)")
       ->delimiter(',');
   sub->add_option("--doc", args->doc, "the Markdown page to write")->capture_default_str();
   sub->add_option("--pictures", args->pictures, "folder of the page's pictures ('' for none)")

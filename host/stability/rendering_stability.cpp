@@ -122,36 +122,49 @@ constexpr Bound kBounds[] = {
     {"total-internal-reflection", "image-space", Measure::kImageRmse, 0.16, 0.14},  // 0.1004, 0.09322
     {"total-internal-reflection", "image-space", Measure::kEventMismatch, 0.6, 0.58},  // 0.398, 0.3842
     {"total-internal-reflection", "image-space", Measure::kTirFound, 0.63, 0.66},  // 0.9522, 0.9924
+    {"total-internal-reflection", "distance-maps", Measure::kImageRmse, 0.056, 0.058},  // 0.03723, 0.03823
+    {"total-internal-reflection", "distance-maps", Measure::kEventMismatch, 0.084, 0.082},  // 0.05541, 0.05404
+    {"total-internal-reflection", "distance-maps", Measure::kTirFound, 0.65, 0.65},  // 0.9829, 0.9807
     {"nested-thin-shells", "voxel-multi", Measure::kImageRmse, 0.15, 0.15},  // 0.09877, 0.09626
     {"nested-thin-shells", "voxel-multi", Measure::kEventMismatch, 1, 1},  // 0.9913, 0.9978
     {"nested-thin-shells", "voxel-two", Measure::kImageRmse, 0.16, 0.15},  // 0.1001, 0.09777
     {"nested-thin-shells", "voxel-two", Measure::kEventMismatch, 1, 1},  // 1, 1
     {"nested-thin-shells", "image-space", Measure::kImageRmse, 0.18, 0.17},  // 0.1136, 0.1133
     {"nested-thin-shells", "image-space", Measure::kEventMismatch, 1, 1},  // 1, 1
+    {"nested-thin-shells", "distance-maps", Measure::kImageRmse, 0.025, 0.027},  // 0.01625, 0.01775
+    {"nested-thin-shells", "distance-maps", Measure::kEventMismatch, 0.024, 0.019},  // 0.01592, 0.01249
     {"grazing-slab", "voxel-multi", Measure::kImageRmse, 0.14, 0.13},  // 0.09006, 0.08247
     {"grazing-slab", "voxel-multi", Measure::kEventMismatch, 0.59, 0.43},  // 0.3925, 0.2803
     {"grazing-slab", "voxel-two", Measure::kImageRmse, 0.15, 0.16},  // 0.09848, 0.1066
     {"grazing-slab", "voxel-two", Measure::kEventMismatch, 0.57, 0.46},  // 0.3737, 0.3039
     {"grazing-slab", "image-space", Measure::kImageRmse, 0.16, 0.16},  // 0.1038, 0.1046
     {"grazing-slab", "image-space", Measure::kEventMismatch, 0.46, 0.46},  // 0.302, 0.3029
+    {"grazing-slab", "distance-maps", Measure::kImageRmse, 0.14, 0.15},  // 0.08977, 0.09548
+    {"grazing-slab", "distance-maps", Measure::kEventMismatch, 0.82, 0.82},  // 0.6333, 0.6387
     {"voxel-corners", "voxel-multi", Measure::kImageRmse, 0.047, 0.069},  // 0.0307, 0.04571
     {"voxel-corners", "voxel-multi", Measure::kEventMismatch, 0.58, 0.2},  // 0.382, 0.1272
     {"voxel-corners", "voxel-two", Measure::kImageRmse, 0.048, 0.07},  // 0.03154, 0.04624
     {"voxel-corners", "voxel-two", Measure::kEventMismatch, 0.76, 0.57},  // 0.5065, 0.3752
     {"voxel-corners", "image-space", Measure::kImageRmse, 0.02, 0.02},  // 0.01296, 0.01287
     {"voxel-corners", "image-space", Measure::kEventMismatch, 0.54, 0.51},  // 0.355, 0.3361
+    {"voxel-corners", "distance-maps", Measure::kImageRmse, 0.047, 0.035},  // 0.0308, 0.02328
+    {"voxel-corners", "distance-maps", Measure::kEventMismatch, 0.064, 0.036},  // 0.04221, 0.02357
     {"multi-material/ball-figure", "voxel-multi", Measure::kImageRmse, 0.15, 0.091},  // 0.0972, 0.06029
     {"multi-material/ball-figure", "voxel-multi", Measure::kEventMismatch, 0.59, 0.3},  // 0.3929, 0.1942
     {"multi-material/ball-figure", "voxel-two", Measure::kImageRmse, 0.15, 0.089},  // 0.09725, 0.05875
     {"multi-material/ball-figure", "voxel-two", Measure::kEventMismatch, 0.67, 0.32},  // 0.4414, 0.2133
     {"multi-material/ball-figure", "image-space", Measure::kImageRmse, 0.22, 0.22},  // 0.1428, 0.1433
     {"multi-material/ball-figure", "image-space", Measure::kEventMismatch, 0.86, 0.86},  // 0.7048, 0.7113
+    {"multi-material/ball-figure", "distance-maps", Measure::kImageRmse, 0.16, 0.16},  // 0.1039, 0.1052
+    {"multi-material/ball-figure", "distance-maps", Measure::kEventMismatch, 0.57, 0.58},  // 0.3799, 0.3862
     {"multi-material/touching", "voxel-multi", Measure::kImageRmse, 0.13, 0.093},  // 0.08273, 0.06191
     {"multi-material/touching", "voxel-multi", Measure::kEventMismatch, 0.75, 0.41},  // 0.4946, 0.2708
     {"multi-material/touching", "voxel-two", Measure::kImageRmse, 0.14, 0.12},  // 0.08879, 0.07993
     {"multi-material/touching", "voxel-two", Measure::kEventMismatch, 0.85, 0.8},  // 0.6831, 0.5883
     {"multi-material/touching", "image-space", Measure::kImageRmse, 0.12, 0.12},  // 0.07695, 0.07772
     {"multi-material/touching", "image-space", Measure::kEventMismatch, 0.84, 0.84},  // 0.673, 0.666
+    {"multi-material/touching", "distance-maps", Measure::kImageRmse, 0.12, 0.11},  // 0.07382, 0.07291
+    {"multi-material/touching", "distance-maps", Measure::kEventMismatch, 0.37, 0.35},  // 0.2451, 0.2331
 };
 // clang-format on
 
