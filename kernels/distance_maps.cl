@@ -226,26 +226,17 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void distance_m
     /* A dielectric interface: leave the material if inside it, else enter it (refract_voxel.cl's rule). */
     const float3 here = o + t * d;
     const uint mat = min(h.material, material_count - 1u);
-    int inside = -1;
-    for (uint k = 0; k < depth; ++k)
-      if (media[k] == mat) inside = (int)k;
+    const int inside = rp_medium_index(media, depth, mat);
     if (inside < 0 && depth == DM_MAX_MEDIA) { /* nested deeper than the stack holds: say so, do not guess */
       events |= VOXR_PATH_LOST;
       break;
     }
-    const float n1 = depth > 0u ? materials[media[depth - 1u]].ior : 1.0f;
-    const float n2 = inside < 0                   ? materials[mat].ior
-                     : (uint)inside + 1u == depth ? (inside > 0 ? materials[media[inside - 1]].ior : 1.0f)
-                                                  : n1;
+    float n1, n2;
+    rp_interface_iors(media, depth, inside, mat, materials, &n1, &n2);
     float3 next;
     if (rp_refract(d, vload3(0, h.normal), n1, n2, &next, &cos_i)) {
       throughput *= 1.0f - voxr_schlick(cos_i, n1, n2);
-      if (inside >= 0) {
-        for (uint k = (uint)inside; k + 1u < depth; ++k) media[k] = media[k + 1u];
-        --depth;
-      } else {
-        media[depth++] = mat;
-      }
+      rp_cross_medium(media, &depth, inside, mat);
     } else {
       events |= VOXR_PATH_TIR;
     }

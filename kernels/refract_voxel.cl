@@ -290,29 +290,18 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
     const float3 n = p.smooth_normals ? boundary_normal(&g, m.i, m.j, m.k, rank, mat, here, 1u) : n_voxel;
     absorb_segment(&throughput, materials, media, depth, last, here, p.voxel_size);
     last = here;
-    int inside = -1;
-    for (uint d = 0; d < depth; ++d)
-      if (media[d] == mat) inside = (int)d;
+    const int inside = rp_medium_index(media, depth, mat);
     if (inside < 0 && depth == MAX_MEDIA) { /* nested deeper than the stack holds: say so, do not guess */
       events |= VOXR_PATH_LOST;
       ended = 1;
       break;
     }
-    const float n1 = depth > 0 ? materials[media[depth - 1]].ior : 1.0f;
-    /* Leaving the innermost medium reveals the one below (or air); leaving an outer one (overlapping solids)
-     * keeps the ray in the innermost: n2 = n1. The reference does the same (next_ior). */
-    const float n2 = inside < 0                   ? mm.ior
-                     : (uint)inside + 1u == depth ? (inside > 0 ? materials[media[inside - 1]].ior : 1.0f)
-                                                  : n1;
+    float n1, n2;
+    rp_interface_iors(media, depth, inside, mat, materials, &n1, &n2);
     float3 new_dir;
     if (rp_refract(dir, n, n1, n2, &new_dir, &cos_i)) {
       throughput *= 1.0f - voxr_schlick(cos_i, n1, n2);
-      if (inside >= 0) {
-        for (uint d = (uint)inside; d + 1 < depth; ++d) media[d] = media[d + 1];
-        --depth;
-      } else {
-        media[depth++] = mat;
-      }
+      rp_cross_medium(media, &depth, inside, mat);
     } else {
       events |= VOXR_PATH_TIR;
     }

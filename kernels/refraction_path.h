@@ -97,4 +97,35 @@ inline int rp_front_surface(SurfaceSample s, float3 dir, __global const RenderMa
   return 1;
 }
 
+/* The parity media stack (refraction.h) at a surface of material `mat`, for a path inside media[0..depth-1]
+ * (innermost last): the index of `mat` in the stack (the surface is left), or -1 (it is entered). */
+inline int rp_medium_index(const uint* media, uint depth, uint mat) {
+  int inside = -1;
+  for (uint k = 0; k < depth; ++k)
+    if (media[k] == mat) inside = (int)k;
+  return inside;
+}
+
+/* The indices of refraction on both sides of that surface: n1 the innermost medium's (air: 1); n2 that of
+ * `mat` when entering it, of the medium below when leaving the innermost (air at the bottom), n1 when leaving
+ * an outer one (overlapping solids keep the ray in the innermost; the reference does the same: next_ior). */
+inline void rp_interface_iors(const uint* media, uint depth, int inside, uint mat,
+                              __global const RenderMaterial* materials, float* n1, float* n2) {
+  *n1 = depth > 0u ? materials[media[depth - 1u]].ior : 1.0f;
+  *n2 = inside < 0                   ? materials[mat].ior
+        : (uint)inside + 1u == depth ? (inside > 0 ? materials[media[inside - 1]].ior : 1.0f)
+                                     : *n1;
+}
+
+/* After refracting through that surface: media[inside] is left, or `mat` entered (the caller has checked
+ * that the stack has room). */
+inline void rp_cross_medium(uint* media, uint* depth, int inside, uint mat) {
+  if (inside >= 0) {
+    for (uint k = (uint)inside; k + 1u < *depth; ++k) media[k] = media[k + 1u];
+    --*depth;
+  } else {
+    media[(*depth)++] = mat;
+  }
+}
+
 #endif

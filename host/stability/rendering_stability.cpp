@@ -187,16 +187,7 @@ double bound_of(std::string_view name, std::string_view method, Measure measure,
 
 StabilityRow row(const std::string& name, const std::string& method, const std::string& measure, double value,
                  double bound, bool at_least, std::string note) {
-  StabilityRow r;
-  r.family = kFamily;
-  r.name = name;
-  r.method = method;
-  r.measure = measure;
-  r.value = value;
-  r.bound = bound;
-  r.at_least = at_least;
-  r.note = std::move(note);
-  return r;
+  return stability_row(kFamily, name, method, measure, value, bound, at_least, std::move(note));
 }
 
 StabilityRow measured_row(const std::string& name, const std::string& method, const std::string& measure,

@@ -43,10 +43,26 @@ struct StabilityRow {
   bool pass() const { return at_least ? value >= bound : value <= bound; }
 };
 
+// A row built from its fields (the families' `row` helpers).
+inline StabilityRow stability_row(std::string family, std::string name, std::string method,
+                                  std::string measure, double value, double bound, bool at_least,
+                                  std::string note) {
+  StabilityRow r;
+  r.family = std::move(family);
+  r.name = std::move(name);
+  r.method = std::move(method);
+  r.measure = std::move(measure);
+  r.value = value;
+  r.bound = bound;
+  r.at_least = at_least;
+  r.note = std::move(note);
+  return r;
+}
+
 struct StabilityContext {
   ClRuntime& cl;
-  bool full = false;                     // false: the small version the test suite runs (seconds per case)
-  std::filesystem::path picture_dir;     // empty: write no pictures
+  bool full = false;                  // false: the small version the test suite runs (seconds per case)
+  std::filesystem::path picture_dir;  // empty: write no pictures
   std::function<void(const std::string&)> progress;  // one line per finished case; may be empty
 };
 

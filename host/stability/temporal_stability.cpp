@@ -146,15 +146,7 @@ Frames pose_frames(const char* json, const char* label, const Sizes& s) {
 
 StabilityRow row(const std::string& name, const std::string& method, const std::string& measure, double value,
                  double bound, std::string note) {
-  StabilityRow r;
-  r.family = "temporal";
-  r.name = name;
-  r.method = method;
-  r.measure = measure;
-  r.value = value;
-  r.bound = bound;
-  r.note = std::move(note);
-  return r;
+  return stability_row("temporal", name, method, measure, value, bound, false, std::move(note));
 }
 
 // Flicker bounds: the values measured on PoCL (small version; full version) times 1.5, rounded up to 0.005,

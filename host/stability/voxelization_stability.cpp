@@ -38,15 +38,7 @@ constexpr const char* kFamily = "voxelization";
 
 StabilityRow row(const std::string& name, const std::string& method, const std::string& measure, double value,
                  double bound, std::string note = {}) {
-  StabilityRow r;
-  r.family = kFamily;
-  r.name = name;
-  r.method = method;
-  r.measure = measure;
-  r.value = value;
-  r.bound = bound;
-  r.note = std::move(note);
-  return r;
+  return stability_row(kFamily, name, method, measure, value, bound, false, std::move(note));
 }
 
 GridSpec fitted_grid(const TriangleSoup& soup, uint32_t res) {
@@ -221,10 +213,9 @@ TriangleSoup steep_soup(uint32_t res, uint32_t seed) {
   return soup;
 }
 
-std::vector<StabilityRow> run_steep(StabilityContext& ctx) {
-  const std::string name = "steep-triangles";
-  const uint32_t res = ctx.full ? 128 : 32;
-  const TriangleSoup soup = steep_soup(res, 7);
+// Every method on `soup` at `res` against the exact sets, with a difference picture each.
+std::vector<StabilityRow> exactness_of_every_method(StabilityContext& ctx, const std::string& name,
+                                                    const TriangleSoup& soup, uint32_t res) {
   const GridSpec grid = fitted_grid(soup, res);
   const VoxelGrid exact = reference_overlap(soup, grid);
   MethodRunner runner(ctx.cl);
@@ -236,6 +227,13 @@ std::vector<StabilityRow> run_steep(StabilityContext& ctx) {
         write_difference_picture(result, exact, ctx.picture_dir, picture_name(name, method));
   }
   return rows;
+}
+
+std::vector<StabilityRow> run_steep(StabilityContext& ctx) {
+  const std::string name = "steep-triangles";
+  const uint32_t res = ctx.full ? 128 : 32;
+  const TriangleSoup soup = steep_soup(res, 7);
+  return exactness_of_every_method(ctx, name, soup, res);
 }
 
 // ---- sub-voxel features and thin shells ----------------------------------------------------------------
@@ -294,17 +292,7 @@ std::vector<StabilityRow> run_thin_shell(StabilityContext& ctx) {
   vase.rows = 16;
   const TriangleSoup soup =
       transformed_soup(make_vase(vase), glm::rotate(glm::dmat4(1.0), 0.3, glm::dvec3(1.0, 0.2, 0.1)));
-  const GridSpec grid = fitted_grid(soup, res);
-  const VoxelGrid exact = reference_overlap(soup, grid);
-  MethodRunner runner(ctx.cl);
-  std::vector<StabilityRow> rows;
-  for (const std::string& method : stability_methods()) {
-    const VoxelGrid result = runner.run(method, soup, grid);
-    exactness_rows(rows, name, method, result, exact, soup);
-    rows.back().picture =
-        write_difference_picture(result, exact, ctx.picture_dir, picture_name(name, method));
-  }
-  return rows;
+  return exactness_of_every_method(ctx, name, soup, res);
 }
 
 // ---- grid-aligned planes -------------------------------------------------------------------------------
