@@ -6,8 +6,8 @@
  * point with the distance the map stores in the point's direction (nearest texel); a sign change between
  * two steps is refined by secant steps and accepted where the refined gap is within a step plus a texel's
  * footprint (else the sign changed at a depth discontinuity of the map), is not on the triangle the ray
- * leaves, and lies at least a texel's footprint away from where it leaves. The nearest accepted hit wins:
- * a refractor layer's is a dielectric interface (refraction.h's model: Snell with the layer's shading
+ * leaves, and lies at least half a texel's footprint away from where it leaves. The nearest accepted hit
+ * wins: a refractor layer's is a dielectric interface (refraction.h's model: Snell with the layer's shading
  * normal, 1 - F per refraction, total internal reflection mirrors, Beer-Lambert per segment, media by
  * parity on a stack), the environment layer's ends the path on that surface. Outside every medium and past
  * the refractor's sphere the environment layer alone is searched to the scene's sphere; nothing found there

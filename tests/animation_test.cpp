@@ -208,5 +208,23 @@ TEST(Animation, PosingUsesOneAnchorAndMovesOnlyWhatIsAnimated) {
   }
 }
 
+TEST(Animation, PosesBeyondTheCoordinateLimitAreErrors) {
+  // Each key is a finite number; the pose at t = 1 lies beyond the readers' 1e30, and at t = 0.5 too.
+  const Scene scene = parse_scene(
+      box_scene(R"({"keys": [{"time": 0}, {"time": 1, "translate": [1e35, 0, 0]}]})"), "s.json", ".");
+  const glm::dvec3 anchor = animation_anchor(scene);
+  EXPECT_NO_THROW(pose_scene(scene, 0.0, anchor));
+  for (double t : {0.5, 1.0}) {
+    try {
+      pose_scene(scene, t, anchor);
+      FAIL() << "no error at t = " << t;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("s.json: the animation at t = "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("beyond the mesh readers' limit of 1e+30"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace voxr

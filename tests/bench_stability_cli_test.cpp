@@ -32,11 +32,17 @@ TEST(BenchStabilityCli, HelpAndUnknownFamily) {
   const test::CliResult help = run_voxr("bench stability --help");
   EXPECT_EQ(help.code, 0) << help.err;
   EXPECT_NE(help.out.find("--full"), std::string::npos) << help.out;
-  const test::CliResult bad =
-      run_voxr("bench stability --family nope --doc " + (scratch() / "x.md").string());
+  // A refused run leaves the pictures folder as it was (it is cleared only when the cases run).
+  const fs::path pictures = scratch() / "kept-pictures";
+  fs::create_directories(pictures);
+  const fs::path kept = test::write_scratch_file("kept-pictures/old.png", "not a picture");
+  const test::CliResult bad = run_voxr("bench stability --family nope --doc " +
+                                       (scratch() / "x.md").string() + " --pictures " + pictures.string());
   EXPECT_NE(bad.code, 0);
   EXPECT_NE(bad.err.find("--family: no case of family 'nope'"), std::string::npos) << bad.err;
   EXPECT_EQ(bad.err.find('\n'), bad.err.size() - 1) << bad.err;
+  EXPECT_TRUE(fs::exists(kept));
+  EXPECT_FALSE(fs::exists(scratch() / "x.md"));
 }
 
 }  // namespace

@@ -1,12 +1,14 @@
 #include "cli/bench_pareto.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
 
+#include "bench/bench_meshes.h"
 #include "bench/pareto_front.h"
 #include "bench/table1.h"
 #include "cl/cl_runtime.h"
@@ -161,6 +163,19 @@ int run_bench_pareto(const BenchParetoArgs& args) {
   for (const std::string& e : args.effects)
     if (std::find(kEffects.begin(), kEffects.end(), e) == kEffects.end())
       fail("bench pareto: unknown effect '{}' (effects: voxelization, shadows, refraction)", e);
+  // Everything an effect would refuse is refused before any effect runs (a late error would lose minutes of
+  // measurements and write nothing).
+  if (wants(args, "voxelization")) {
+    const std::vector<std::string> known = table1_methods_with_peers();
+    for (const std::string& m : args.vox_methods)
+      if (std::find(known.begin(), known.end(), m) == known.end())
+        fail("bench pareto: --vox-methods: unknown method '{}' (known: {})", m, fmt::join(known, ", "));
+    for (const std::string& mesh : args.vox_meshes) make_bench_mesh(mesh);
+  }
+  if (wants(args, "shadows"))
+    for (const std::string& scene : args.shadow_scenes)
+      if (scene != "default" && !fs::exists(scene))
+        fail("bench pareto: --shadow-scenes: {}: no such file", scene);
   if (wants(args, "refraction")) {
     BenchRefractionArgs a;
     a.scenes = args.refraction_scenes;

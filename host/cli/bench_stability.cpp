@@ -33,16 +33,13 @@ std::string regenerate_command(const BenchStabilityArgs& args) {
 }  // namespace
 
 int run_bench_stability(const BenchStabilityArgs& args) {
+  const std::vector<StabilityCase> all = all_stability_cases();
+  for (const std::string& f : args.families)
+    if (std::none_of(all.begin(), all.end(), [&](const StabilityCase& c) { return c.family == f; }))
+      fail("--family: no case of family '{}' (families: voxelization, rendering, temporal, inputs)", f);
   ClRuntime cl(args.device);
   const std::array<double, 3> load_before = load_averages();
   StabilityContext ctx{cl, args.full, {}, {}};
-  if (!args.pictures.empty()) {
-    ctx.picture_dir = args.pictures;
-    // The folder holds the suite's pictures only: stale ones of renamed cases go.
-    if (fs::is_directory(ctx.picture_dir))
-      for (const fs::directory_entry& e : fs::directory_iterator(ctx.picture_dir))
-        if (e.is_regular_file() && e.path().extension() == ".png") fs::remove(e.path());
-  }
   ctx.progress = [](const std::string& line) {
     fmt::print("{}\n", line);
     std::fflush(stdout);
@@ -51,13 +48,18 @@ int run_bench_stability(const BenchStabilityArgs& args) {
                                          cl.device().driver_version);
   fmt::print("device: {}\n", device);
   std::vector<StabilityCase> cases;
-  for (StabilityCase& c : all_stability_cases())
+  for (const StabilityCase& c : all)
     if (args.families.empty() ||
         std::find(args.families.begin(), args.families.end(), c.family) != args.families.end())
-      cases.push_back(std::move(c));
-  for (const std::string& f : args.families)
-    if (std::none_of(cases.begin(), cases.end(), [&](const StabilityCase& c) { return c.family == f; }))
-      fail("--family: no case of family '{}' (families: voxelization, rendering, temporal, inputs)", f);
+      cases.push_back(c);
+  if (!args.pictures.empty()) {
+    ctx.picture_dir = args.pictures;
+    // The folder holds the suite's pictures only: stale ones of renamed cases go (once every argument has
+    // been checked and the device is open).
+    if (fs::is_directory(ctx.picture_dir))
+      for (const fs::directory_entry& e : fs::directory_iterator(ctx.picture_dir))
+        if (e.is_regular_file() && e.path().extension() == ".png") fs::remove(e.path());
+  }
   const std::vector<StabilityCaseResult> results = run_stability_cases(cases, ctx);
   const std::array<double, 3> load_after = load_averages();
   StabilityHeader header;
@@ -89,7 +91,8 @@ Command add_bench_stability(CLI::App& bench) {
       "stability",
       "The stability suite: every method on every failure mode, bounds checked -> docs/stability.md");
   sub->add_flag("--full", args->full, "the full cases (default: the small versions the tests run)");
-  sub->add_option("--family", args->families, "run these families only (voxelization, rendering, temporal, inputs)")
+  sub->add_option("--family", args->families,
+                  "run these families only (voxelization, rendering, temporal, inputs)")
       ->delimiter(',');
   sub->add_option("--doc", args->doc, "the Markdown page to write")->capture_default_str();
   sub->add_option("--pictures", args->pictures, "folder of the page's pictures ('' for none)")

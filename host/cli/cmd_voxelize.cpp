@@ -220,7 +220,9 @@ int run_voxelize(const VoxelizeArgs& args) {
   if (args.error_target) request.dims.reset();  // a scene's "grid" dims give way to the search
   fit_request_to_format(request, args.output);
   GridSpec grid = fit_grid(bounds, request, soup.anchor);
-  if (!args.output.empty() && !args.error_target) check_volume_output(args.output, grid.dims);
+  // With --error-target the grid is known after the search: folder and format are checked now, the size the
+  // format holds after it.
+  if (!args.output.empty()) check_volume_output(args.output, args.error_target ? glm::uvec3(1) : grid.dims);
 
   bool refit = false;
   if (options.solid) {

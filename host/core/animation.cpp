@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/json_reader.h"
 #include "core/scene.h"
+#include "mesh/text_scan.h"
 
 namespace voxr {
 
@@ -223,7 +224,16 @@ void pose_scene(const Scene& scene, double t, const glm::dvec3& anchor, Triangle
           out.triangles[tri++] = tr;
         }
       },
-      [&](const glm::dvec3& w) { out.positions[v++] = glm::vec4(glm::vec3(w - anchor), 1.0f); });
+      [&](const glm::dvec3& w) {
+        // Keys and deformations are only checked to be finite numbers: their product may not be.
+        if (!(std::abs(w.x) <= text::kMaxCoordinate && std::abs(w.y) <= text::kMaxCoordinate &&
+              std::abs(w.z) <= text::kMaxCoordinate))
+          fail(
+              "{}: the animation at t = {:.4g} s moves a vertex to ({}, {}, {}), beyond the mesh readers' "
+              "limit of {:g} (check the keys' and deformations' magnitudes)",
+              scene.source, t, w.x, w.y, w.z, text::kMaxCoordinate);
+        out.positions[v++] = glm::vec4(glm::vec3(w - anchor), 1.0f);
+      });
 }
 
 TriangleSoup pose_scene(const Scene& scene, double t, const glm::dvec3& anchor) {

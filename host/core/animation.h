@@ -87,6 +87,8 @@ bool is_animated(const Scene& scene);
 // The whole scene posed at time `t` (seconds): every mesh in world space with its material ids, in scene
 // order, positions relative to `anchor`. Triangles and vertex counts are the same at every t.
 // `out` is overwritten (its allocations are reused: a renderer reading it in place must be done with it).
+// Throws voxr::Error naming the scene when a posed vertex is not finite or lies beyond 1e30 (the mesh
+// readers' limit, text::kMaxCoordinate): keys and deformations that are each finite can multiply past it.
 void pose_scene(const Scene& scene, double t, const glm::dvec3& anchor, TriangleSoup& out);
 TriangleSoup pose_scene(const Scene& scene, double t, const glm::dvec3& anchor);
 

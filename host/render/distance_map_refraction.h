@@ -82,6 +82,12 @@ class DistanceMapRefraction {
              const cl::Buffer& materials, uint32_t material_count, const RefractionOptions& options,
              const cl::Buffer& primary_samples, cl::Buffer& end_samples, cl::Buffer& paths);
 
+  // Device memory of the layers and the buffers that build them (as allocated, after a trace).
+  uint64_t device_bytes() const {
+    return peel_[0].bytes + peel_[1].bytes + face_samples_.bytes + layers_.bytes + environment_.bytes +
+           distances_.bytes;
+  }
+
  private:
   ClRuntime& cl_;
   VisibilityRasterizer rasterizer_;

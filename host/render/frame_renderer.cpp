@@ -163,6 +163,7 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
       cl::Buffer& e = ends_.ensure(cl_, pixels * sizeof(SurfaceSample), "refraction ends");
       image_space_.trace(*mesh_, vertex_normals_, camera, materials_buffer_, material_count_, samples_.buffer,
                          e, paths);
+      st.refraction_bytes = image_space_.device_bytes();
       ends = &e;
       break;
     }
@@ -170,6 +171,7 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
       cl::Buffer& e = ends_.ensure(cl_, pixels * sizeof(SurfaceSample), "refraction ends");
       distance_maps_.trace(*mesh_, vertex_normals_, camera, materials_buffer_, material_count_,
                            options.refraction, samples_.buffer, e, paths);
+      st.refraction_bytes = distance_maps_.device_bytes();
       ends = &e;
       break;
     }

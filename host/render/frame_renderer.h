@@ -58,7 +58,8 @@ struct FrameStats {
   uint64_t device_bytes = 0;               // the shadow method's grid or maps
   uint64_t light_triangles = 0;            // triangles voxelized or rasterized from the light
   GridSpec refraction_grid;                // voxel refraction: the scene's grid
-  uint64_t refraction_bytes = 0;           // voxel refraction: the grid's channels
+  uint64_t refraction_bytes = 0;  // the refraction method's structure: the voxel grid's channels, the
+                                  // image-space buffers or the distance-map layers
 };
 
 struct RenderedFrame {

@@ -53,6 +53,12 @@ class ImageSpaceRefraction {
              const cl::Buffer& materials, uint32_t material_count, const cl::Buffer& primary_samples,
              cl::Buffer& end_samples, cl::Buffer& paths);
 
+  // Device memory of d_N and the back-face and opaque buffers (as allocated, after a trace).
+  uint64_t device_bytes() const {
+    return inward_distance_.bytes + back_visibility_.bytes + back_samples_.bytes + opaque_visibility_.bytes +
+           opaque_samples_.bytes;
+  }
+
  private:
   ClRuntime& cl_;
   VisibilityRasterizer& rasterizer_;

@@ -4,8 +4,9 @@
 // refract_voxel.cl):
 //   voxel-two    refract at the exact front surface (the visibility buffer's sample, interpolated normal),
 //                march the grid to the back surface of that dielectric, refract out with the boundary
-//                normal there (voxel or smooth, as for voxel-multi) (or mirror on total internal reflection), then march on to what the ray sees: the
-//                first opaque voxel, or the environment on leaving the grid; later dielectrics are passed.
+//                normal there (voxel or smooth, as for voxel-multi) (or mirror on total internal reflection),
+//                then march on to what the ray sees: the first opaque voxel, or the environment on leaving
+//                the grid; later dielectrics are passed.
 //   voxel-multi  the same front surface, then Snell-law marching: every boundary voxel between media
 //                refracts (voxel or smooth normal), the rest of its boundary run is skipped unless a voxel's
 //                normal turns more than the angle threshold from the last refraction normal, Beer-Lambert

@@ -126,11 +126,13 @@ constexpr Bound kBounds[] = {
     {"total-internal-reflection", "distance-maps", Measure::kEventMismatch, 0.084, 0.082},  // 0.05541, 0.05404
     {"total-internal-reflection", "distance-maps", Measure::kTirFound, 0.65, 0.65},  // 0.9829, 0.9807
     {"nested-thin-shells", "voxel-multi", Measure::kImageRmse, 0.15, 0.15},  // 0.09877, 0.09626
-    {"nested-thin-shells", "voxel-multi", Measure::kEventMismatch, 1, 1},  // 0.9913, 0.9978
+    // Documented, not bounded: walls under a voxel thick cancel the voxel normals and hide the inner shell
+    // from image-space, so (nearly) every event sequence differs; a share cannot exceed 1 to fail.
+    {"nested-thin-shells", "voxel-multi", Measure::kEventMismatch, kDocumented, kDocumented},  // 0.9913, 0.9978
     {"nested-thin-shells", "voxel-two", Measure::kImageRmse, 0.16, 0.15},  // 0.1001, 0.09777
-    {"nested-thin-shells", "voxel-two", Measure::kEventMismatch, 1, 1},  // 1, 1
+    {"nested-thin-shells", "voxel-two", Measure::kEventMismatch, kDocumented, kDocumented},  // 1, 1
     {"nested-thin-shells", "image-space", Measure::kImageRmse, 0.18, 0.17},  // 0.1136, 0.1133
-    {"nested-thin-shells", "image-space", Measure::kEventMismatch, 1, 1},  // 1, 1
+    {"nested-thin-shells", "image-space", Measure::kEventMismatch, kDocumented, kDocumented},  // 1, 1
     {"nested-thin-shells", "distance-maps", Measure::kImageRmse, 0.025, 0.027},  // 0.01625, 0.01775
     {"nested-thin-shells", "distance-maps", Measure::kEventMismatch, 0.024, 0.019},  // 0.01592, 0.01249
     {"grazing-slab", "voxel-multi", Measure::kImageRmse, 0.14, 0.13},  // 0.09006, 0.08247

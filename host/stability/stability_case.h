@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,9 @@ struct StabilityRow {
   std::string picture;  // optional: a small PNG written under StabilityContext::picture_dir (relative path)
   bool pass() const { return at_least ? value >= bound : value <= bound; }
 };
+
+// The bound of a documented result, not a requirement: it always passes and the page shows "—".
+inline constexpr double kDocumented = std::numeric_limits<double>::infinity();
 
 // A row built from its fields (the families' `row` helpers).
 inline StabilityRow stability_row(std::string family, std::string name, std::string method,

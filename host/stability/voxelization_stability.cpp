@@ -33,7 +33,6 @@ namespace voxr {
 
 namespace {
 
-constexpr double kDocumented = std::numeric_limits<double>::infinity();  // no bound: a documented result
 constexpr const char* kFamily = "voxelization";
 
 StabilityRow row(const std::string& name, const std::string& method, const std::string& measure, double value,
