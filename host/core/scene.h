@@ -1,72 +1,11 @@
-// A scene: meshes with materials, one light, one camera, an environment colour and how to fit the grid.
+// A scene: meshes with materials, one light, one camera, an environment and how to fit the grid.
 //
-// Scene file format (JSON; // and /* */ comments allowed). Every key is optional unless marked required;
-// an unknown or repeated key anywhere is an error naming its path (e.g. "scene.json: unknown key
-// 'meshes[1].materail' (did you mean 'meshes[1].material'?)"); so are wrong types and out-of-range values.
-//
-//   {
-//     "materials": [                                  default: one opaque material "default"
-//       {"name": "floor", "kind": "opaque",           name (required, unique), kind (required)
-//        "color": [0.8, 0.8, 0.8]},                   opaque: color in [0,1]             (0.8)
-//       {"name": "glass", "kind": "dielectric",
-//        "ior": 1.5, "absorption": [0.1, 0.2, 0.3]},  dielectric: ior > 0 (1.5), absorption >= 0 per unit (0)
-//       {"name": "leaf", "kind": "sheet",
-//        "color": [0.3, 0.6, 0.2],                    sheet: color in [0,1] (0.8),
-//        "transmittance": [0.5, 0.8, 0.4]}            transmittance per crossing in [0,1] (1)
-//     ],                                              (a key of another kind is an error)
-//     "meshes": [                                     required, at least one
-//       {"file": "../meshes/bunny.obj",               a mesh file (.obj .off .ply .stl), see below, or
-//        "material": "glass",                         a material name, or a list of names, one per
-//                                                     material id the mesh carries (["bark", "leaf"] for
-//                                                     a tree); default: the first material
-//        "subdivide": 0,                              midpoint subdivision levels (0..8), before transforming
-//        "transform": {"scale": 1.0,                  a number or [x, y, z], no component 0
-//                      "rotate_deg": [0, 0, 0],       about X, then Y, then Z, in degrees
-//                      "translate": [0, 0, 0]},       applied in this order: scale, rotate, translate
-//        "animation": {                               optional; makes the scene deforming (animation.h)
-//          "keys": [{"time": 0,                       seconds >= 0, strictly increasing (required)
-//                    "scale": 1, "rotate_deg": [0, 0, 0], "translate": [0, 0, 0]},  as "transform"
-//                   {"time": 2, "translate": [1, 0, 0]}],  interpolated linearly, rotation by quaternion
-//                                                     slerp; held before the first and after the last key;
-//                                                     applied after "transform": world = K(t) * transform * p
-//          "deform": [                                per-vertex, object space, before "transform", in order;
-//                                                     h = height above the mesh's lowest vertex
-//            {"kind": "sway", "amplitude": 0.05,      required: object units of displacement at h = 1
-//             "frequency_hz": 0.5,                    required, > 0
-//             "axis": [1, 0, 0],                      non-zero sway direction ([1, 0, 0]); the offset is
-//             "phase_per_unit": 0},                   axis * amplitude * h * sin(2 pi f t + phase_per_unit h)
-//            {"kind": "twist", "degrees_per_unit": 30, required: peak rotation about the object's Y axis
-//             "frequency_hz": 0.25}]}},               per unit of h; angle = deg * h * sin(2 pi f t), f > 0
-//       {"generator": "torus",                        torus | sphere | box | vase | tree | plane | foliage
-//        "params": {"major": 1, "minor": 0.4},        generator parameters (generators.h)
-//        "material": "floor"}
-//     ],
-//     "light": {"type": "point",                      required when "light" is given: point | directional
-//               "position": [0, 5, 5],                point: required
-//               "direction": [0, -1, 0],              directional: required, non-zero, the way light travels
-//               "intensity": [1, 1, 1]},              >= 0 (1); point lights fall off as 1/distance^2
-//     "camera": {"position": [0, 1, 5],               required when "camera" is given
-//                "look_at": [0, 0, 0],                required when "camera" is given, != position
-//                "up": [0, 1, 0],                     not parallel to look_at - position
-//                "fov_deg": 45,                       vertical field of view in (0, 180)
-//                "width": 512, "height": 512},        image size, 1..16384
-//     "environment": {"color": [0.5, 0.5, 0.5]},      exactly one of: color >= 0,
-//                    {"image": "sky.exr"},            an equirectangular .exr/.hdr/.png (relative to the
-//                                                     scene file), row 0 straight up, centre column -z,
-//                    {"procedural": "checker"},       or the built-in lat-long checker
-//     "grid": {"res": 256,                            voxels along the longest axis (1..16384), or
-//              "dims": [256, 128, 256],               exact dimensions (not both)
-//              "bounds": [x0, y0, z0, x1, y1, z1],    world box, x0 < x1 etc.; default: fitted to the scene
-//              "margin_voxels": 0.25}                 >= 0, around fitted bounds (faces kept off ties)
-//     "animation": {"fps": 24}                        frames per second of `voxr render --frames` (24)
-//   }
-//
-// Mesh file paths are relative to the scene file's folder. A path "$VOXR_MESH_DIR/NAME", or a relative path
-// not found next to the scene, is looked up in the folder named by the environment variable VOXR_MESH_DIR
-// (default: data/meshes under the current directory). Material ids are indices into "materials".
-// Without "light", "camera" or "environment", defaults frame the scene's bounds (default_camera,
-// default_light, kDefaultEnvironment). An animated scene's bounds, default camera and light, fitted grid and
-// scene_triangles are those of t = 0; pose_scene (animation.h) gives the triangles at any time.
+// The scene file format (JSON), every key with its default and range, the generators, animation and the
+// example scenes in data/scenes/: docs/scene-format.md. Mesh file paths are relative to the scene file's
+// folder, else looked up in $VOXR_MESH_DIR (default data/meshes). Without "light", "camera" or
+// "environment", defaults frame the scene's bounds (default_camera, default_light, kDefaultEnvironment). An
+// animated scene's bounds, default camera and light, fitted grid and scene_triangles are those of t = 0;
+// pose_scene (animation.h) gives the triangles at any time.
 #pragma once
 
 #include <nlohmann/json_fwd.hpp>
