@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "io/volume_writer.h"
+#include "io/grid_encoding.h"
 
 namespace voxr {
 
