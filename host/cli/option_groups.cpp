@@ -46,7 +46,8 @@ CLI::Option* add_size_option(CLI::App& app, std::string& size) {
               return "";
             } catch (const Error& e) {
               // parse_size's message starts "--size '...'"; CLI11 puts "--size: " before the one returned.
-              return std::string(e.what()).substr(std::string("--size ").size());
+              const std::string message = e.what(), flag = "--size ";
+              return message.starts_with(flag) ? message.substr(flag.size()) : message;
             }
           },
           "WIDTHxHEIGHT"));
