@@ -114,9 +114,11 @@ DeviceInfo select_device(const std::string& selector_arg) {
       return d;
     }
   }
+  // One line naming where the selector came from (errors are one line: see host/cli/main.cpp).
   std::string known;
-  for (const DeviceInfo& d : devices) known += "\n  " + d.label();
-  fail("no OpenCL device matches '{}'; devices:{}", selector, known);
+  for (const DeviceInfo& d : devices) known += (known.empty() ? "" : "; ") + d.label();
+  fail("{} '{}': no OpenCL device matches (devices: {})", selector_arg.empty() ? "VOXR_DEVICE" : "--device",
+       selector, known);
 }
 
 }  // namespace voxr

@@ -12,6 +12,7 @@
 #include "cl/cl_runtime.h"
 #include "cli/bench_support.h"
 #include "cli/commands.h"
+#include "cli/option_groups.h"
 #include "cli/parse_args.h"
 #include "core/animation.h"
 #include "core/clock.h"
@@ -163,12 +164,10 @@ Command add_bench_animation(CLI::App& bench) {
   sub->add_option("--frames", args->frames, "frames per scene")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
-  sub->add_option("--size", args->size, "image WIDTHxHEIGHT")->capture_default_str();
-  sub->add_option("--device", args->device, "OpenCL device P:D or name substring");
-  sub->add_option("--out", args->out, "output prefix: PREFIX.csv and PREFIX.md")->capture_default_str();
-  sub->add_option("--fresh", args->fresh, "fresh `voxr render --frames N` processes per scene (0: none)")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
+  add_size_option(*sub, args->size)->capture_default_str();
+  add_device_option(*sub, args->device);
+  add_out_prefix_option(*sub, args->out, "PREFIX.csv and PREFIX.md");
+  add_fresh_option(*sub, args->fresh, "voxr render SCENE --frames N --size SIZE");
   return {sub, [args] { return run_bench_animation(*args); }};
 }
 

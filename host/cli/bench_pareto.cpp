@@ -17,6 +17,7 @@
 #include "cli/bench_support.h"
 #include "cli/commands.h"
 #include "cli/openvdb_plugin.h"
+#include "cli/option_groups.h"
 #include "cli/process.h"
 #include "core/error.h"
 #include "core/grid_spec.h"
@@ -235,23 +236,19 @@ Command add_bench_pareto(CLI::App& bench) {
       "pareto",
       "Speed against accuracy: every voxelization, shadow and refraction method x resolution, the "
       "Pareto fronts, charts and a page");
-  sub->add_option("--out", a->out, "output prefix: PREFIX.csv (and PREFIX.md, PREFIX-charts/ without --doc)")
-      ->capture_default_str();
+  add_out_prefix_option(*sub, a->out, "PREFIX.csv (and PREFIX.md, PREFIX-charts/ without --doc)");
   sub->add_option("--doc", a->doc,
                   "write this Markdown page (e.g. docs/pareto.md), pictures in images/pareto/ "
                   "beside it");
   sub->add_flag("--quick", *quick, "one scene per effect, two resolutions (options given win)");
-  sub->add_option("--device", a->device, "OpenCL device P:D or name substring");
+  add_device_option(*sub, a->device);
   sub->add_option("--effects", a->effects, "voxelization, shadows, refraction")
       ->delimiter(',')
       ->capture_default_str();
   CLI::Option* vox_meshes = sub->add_option("--vox-meshes", a->vox_meshes, "voxelization: bench meshes")
                                 ->delimiter(',')
                                 ->capture_default_str();
-  CLI::Option* vox_res = sub->add_option("--vox-res", a->vox_res, "voxelization: resolutions")
-                             ->delimiter(',')
-                             ->check(CLI::Range(1u, kMaxGridDim))
-                             ->capture_default_str();
+  CLI::Option* vox_res = add_grid_option(*sub, "--vox-res", GridKind::kVoxel, a->vox_res);
   sub->add_option("--vox-methods", a->vox_methods,
                   "voxelization: Table 1 methods (default: all, openvdb if built)")
       ->delimiter(',');
@@ -262,10 +259,7 @@ Command add_bench_pareto(CLI::App& bench) {
       sub->add_option("--shadow-scenes", a->shadow_scenes, "shadows: scene files or default")
           ->delimiter(',')
           ->capture_default_str();
-  CLI::Option* shadow_res = sub->add_option("--shadow-res", a->shadow_res, "shadows: shadow resolutions")
-                                ->delimiter(',')
-                                ->check(CLI::Range(3u, 4096u))
-                                ->capture_default_str();
+  CLI::Option* shadow_res = add_grid_option(*sub, "--shadow-res", GridKind::kShadow, a->shadow_res);
   sub->add_option("--shadow-methods", a->shadow_methods, "shadows: methods (default: bench shadows')")
       ->delimiter(',');
   CLI::Option* refraction_scenes =
@@ -273,20 +267,12 @@ Command add_bench_pareto(CLI::App& bench) {
           ->delimiter(',')
           ->capture_default_str();
   CLI::Option* refraction_res =
-      sub->add_option("--refraction-res", a->refraction_res, "refraction: grid resolutions")
-          ->delimiter(',')
-          ->check(CLI::Range(2u, 4096u))
-          ->capture_default_str();
+      add_grid_option(*sub, "--refraction-res", GridKind::kRefraction, a->refraction_res);
   sub->add_option("--refraction-methods", a->refraction_methods,
                   "refraction: methods (default: bench refraction's)")
       ->delimiter(',');
-  sub->add_option("--size", a->size, "shadows' and refraction's image WIDTHxHEIGHT")->capture_default_str();
-  sub->add_option("--repeat", a->repeat, "timed runs per case")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
-  sub->add_option("--warmup", a->warmup, "untimed runs first")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
+  add_size_option(*sub, a->size)->capture_default_str();
+  add_repeat_options(*sub, a->repeat, a->warmup);
   return {sub, [=] {
             BenchParetoArgs args = *a;
             if (*quick) {

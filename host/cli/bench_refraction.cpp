@@ -14,6 +14,8 @@
 #include "cl/cl_runtime.h"
 #include "cli/bench_support.h"
 #include "cli/commands.h"
+#include "cli/option_groups.h"
+#include "cli/option_groups_render.h"
 #include "cli/parse_args.h"
 #include "cli/process.h"
 #include "core/clock.h"
@@ -384,30 +386,15 @@ Command add_bench_refraction(CLI::App& bench) {
       "Refraction methods x grid resolutions x scenes: frame time against error vs the matched reference");
   sub->add_option("--scenes", a->scenes, "scene files")->delimiter(',')->capture_default_str();
   sub->add_option("--methods", a->methods, kMethodHelp)->delimiter(',')->capture_default_str();
-  sub->add_option("--res", a->resolutions, "voxel refraction grids: voxels along the scene's longest side")
-      ->delimiter(',')
-      ->check(CLI::Range(2u, 4096u))
+  add_grid_option(*sub, "--res", GridKind::kRefraction, a->resolutions);
+  add_shadows_option(*sub, a->shadows, "the timed frames' shadow method (errors always use the exact ones)")
       ->capture_default_str();
-  sub->add_option("--shadows", a->shadows,
-                  "the timed frames' shadow method (errors always use the exact ones)")
-      ->capture_default_str();
-  sub->add_option("--shadow-res", a->shadow_res, "the shadow method's resolution")
-      ->check(CLI::Range(3u, 4096u))
-      ->capture_default_str();
-  sub->add_option("--size", a->size, "image WIDTHxHEIGHT")->capture_default_str();
-  sub->add_option("--device", a->device, "OpenCL device P:D or name substring");
-  sub->add_option("--out", a->out, "output prefix: PREFIX.csv, PREFIX.md, PREFIX-charts/")
-      ->capture_default_str();
-  sub->add_option("--repeat", a->repeat, "timed frames per case")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
-  sub->add_option("--warmup", a->warmup, "untimed frames first")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
-  sub->add_option("--fresh", a->fresh,
-                  "fresh `voxr render --refraction voxel-multi --res 256` processes per scene (0: none)")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
+  add_grid_option(*sub, "--shadow-res", GridKind::kShadow, a->shadow_res)->capture_default_str();
+  add_size_option(*sub, a->size)->capture_default_str();
+  add_device_option(*sub, a->device);
+  add_out_prefix_option(*sub, a->out, "PREFIX.csv, PREFIX.md, PREFIX-charts/");
+  add_repeat_options(*sub, a->repeat, a->warmup);
+  add_fresh_option(*sub, a->fresh, "voxr render SCENE --refraction voxel-multi --res 256");
   return {sub, [a] { return run_bench_refraction(*a); }};
 }
 

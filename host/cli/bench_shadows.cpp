@@ -14,6 +14,7 @@
 #include "cl/cl_runtime.h"
 #include "cli/bench_support.h"
 #include "cli/commands.h"
+#include "cli/option_groups.h"
 #include "cli/parse_args.h"
 #include "cli/process.h"
 #include "core/clock.h"
@@ -236,26 +237,15 @@ Command add_bench_shadows(CLI::App& bench) {
   sh->add_option("--scenes", shadows->scenes, "scene files (default: the built-in scene)")
       ->delimiter(',')
       ->capture_default_str();
-  sh->add_option("--res", shadows->resolutions, "shadow resolutions")
-      ->delimiter(',')
-      ->check(CLI::Range(3u, 4096u))
-      ->capture_default_str();
+  add_grid_option(*sh, "--res", GridKind::kShadow, shadows->resolutions);
   sh->add_option("--methods", shadows->methods, "voxel-center, voxel-conservative, uniform, filter, opaque")
       ->delimiter(',')
       ->capture_default_str();
-  sh->add_option("--size", shadows->size, "image WIDTHxHEIGHT")->capture_default_str();
-  sh->add_option("--device", shadows->device, "OpenCL device P:D or name substring");
-  sh->add_option("--out", shadows->out, "output prefix: PREFIX.csv, PREFIX.md, PREFIX-charts/")
-      ->capture_default_str();
-  sh->add_option("--repeat", shadows->repeat, "timed frames per case")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
-  sh->add_option("--warmup", shadows->warmup, "untimed frames first")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
-  sh->add_option("--fresh", shadows->fresh, "fresh `voxr render` processes per scene (0: none)")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
+  add_size_option(*sh, shadows->size)->capture_default_str();
+  add_device_option(*sh, shadows->device);
+  add_out_prefix_option(*sh, shadows->out, "PREFIX.csv, PREFIX.md, PREFIX-charts/");
+  add_repeat_options(*sh, shadows->repeat, shadows->warmup);
+  add_fresh_option(*sh, shadows->fresh, "voxr render SCENE --shadows voxel --shadow-res 256");
   return {sh, [shadows] { return run_bench_shadows(*shadows); }};
 }
 

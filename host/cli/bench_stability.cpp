@@ -10,6 +10,7 @@
 #include "cl/cl_runtime.h"
 #include "cli/bench_support.h"
 #include "cli/commands.h"
+#include "cli/option_groups.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "stability/stability_suite.h"
@@ -97,7 +98,7 @@ Command add_bench_stability(CLI::App& bench) {
   sub->add_option("--doc", args->doc, "the Markdown page to write")->capture_default_str();
   sub->add_option("--pictures", args->pictures, "folder of the page's pictures ('' for none)")
       ->capture_default_str();
-  sub->add_option("--device", args->device, "OpenCL device P:D or name substring");
+  add_device_option(*sub, args->device);
   return {sub, [args] { return run_bench_stability(*args); }};
 }
 

@@ -16,6 +16,7 @@
 #include "cli/bench_voxelize.h"
 #include "cli/commands.h"
 #include "cli/openvdb_plugin.h"
+#include "cli/option_groups.h"
 #include "io/atomic_file.h"
 
 namespace voxr::cli {
@@ -109,55 +110,34 @@ Command add_bench(CLI::App& app) {
                   "benchmark meshes (torus, bunny, armadillo, ...; BASExN subdivides)")
       ->delimiter(',')
       ->capture_default_str();
-  vox->add_option("--res", args->resolutions, "resolutions (voxels on the longest axis)")
-      ->delimiter(',')
-      ->check(CLI::Range(1u, kMaxGridDim))
-      ->capture_default_str();
+  add_grid_option(*vox, "--res", GridKind::kVoxel, args->resolutions);
   std::string cases;
   for (const VoxelizeCase& c : voxelize_cases()) cases += (cases.empty() ? "" : ", ") + c.name;
   vox->add_option("--cases", args->cases, "cases: " + cases)->delimiter(',')->capture_default_str();
-  vox->add_option("--device", args->device, "OpenCL device P:D or name substring");
+  add_device_option(*vox, args->device);
   vox->add_option("--out", args->out, "CSV file");
   vox->add_option("--write", args->write, "fresh processes also write -o out.EXT (e.g. binvox)");
-  vox->add_option("--repeat", args->repeat, "timed frame and job runs per case (median reported)")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
-  vox->add_option("--warmup", args->warmup, "untimed runs first")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
-  vox->add_option("--fresh", args->fresh, "fresh `voxr voxelize` processes per case (0: none)")
-      ->check(CLI::Range(0, 1000))
-      ->capture_default_str();
+  add_repeat_options(*vox, args->repeat, args->warmup);
+  add_fresh_option(*vox, args->fresh, "voxr voxelize MESH --res R");
   auto table = std::make_shared<Table1Args>();
   CLI::App* t1 = sub->add_subcommand(
       "table1", "The papers' Table 1: every method x model x resolution, time and accuracy");
   t1->add_option("--models", table->models, "LABEL=MESH or MESH (default: the papers' six triangle counts)")
       ->delimiter(',');
-  t1->add_option("--res", table->resolutions, "resolutions")
-      ->delimiter(',')
-      ->check(CLI::Range(1u, kMaxGridDim))
-      ->capture_default_str();
+  add_grid_option(*t1, "--res", GridKind::kVoxel, table->resolutions);
   t1->add_option("--methods", table->methods, "methods")->delimiter(',')->capture_default_str();
-  t1->add_option("--device", table->device, "OpenCL device P:D or name substring");
-  t1->add_option("--out", table->out, "output prefix: PREFIX.csv and PREFIX.md")->capture_default_str();
-  t1->add_option("--repeat", table->repeat, "timed runs per case")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
-  t1->add_option("--warmup", table->warmup, "untimed runs first")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
+  add_device_option(*t1, table->device);
+  add_out_prefix_option(*t1, table->out, "PREFIX.csv and PREFIX.md");
+  add_repeat_options(*t1, table->repeat, table->warmup);
   t1->add_flag("--no-accuracy", table->no_accuracy, "skip the accuracy measures (time only)");
   auto solid = std::make_shared<SolidArgs>();
   CLI::App* so = sub->add_subcommand(
       "solid", "Solid modes x meshes (closed and with holes): time, missing/extra voxels");
   so->add_option("--meshes", solid->options.meshes, "bench meshes")->delimiter(',')->capture_default_str();
-  so->add_option("--res", solid->options.resolutions, "resolutions")
-      ->delimiter(',')
-      ->check(CLI::Range(1u, kMaxGridDim))
-      ->capture_default_str();
-  so->add_option("--device", solid->device, "OpenCL device P:D or name substring");
-  so->add_option("--out", solid->out, "output prefix: PREFIX.csv and PREFIX.md")->capture_default_str();
-  so->add_option("--repeat", solid->options.repeat, "timed runs per case")->check(CLI::Range(1, 1000));
+  add_grid_option(*so, "--res", GridKind::kVoxel, solid->options.resolutions);
+  add_device_option(*so, solid->device);
+  add_out_prefix_option(*so, solid->out, "PREFIX.csv and PREFIX.md");
+  add_repeat_option(*so, solid->options.repeat);
   const Command shadows = add_bench_shadows(*sub);
   const Command refraction = add_bench_refraction(*sub);
   const Command stability = add_bench_stability(*sub);

@@ -29,6 +29,8 @@
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
 #include "cli/frame_pattern.h"
+#include "cli/option_groups.h"
+#include "cli/option_groups_render.h"
 #include "cli/parse_args.h"
 #include "cli/prepared_runtime.h"
 #include "cli/render_error_target.h"
@@ -558,6 +560,14 @@ int run_render(const RenderArgs& args) {
   return 0;
 }
 
+// Flags only one refraction method reads are refused with another, as --mode is without --shadows voxel.
+void check_method_flags(const RenderArgs& args, const CLI::App& sub) {
+  if (args.refraction != "distance-maps")
+    for (const char* flag : {"--layers", "--layer-res", "--dm-depth"})
+      if (sub.count(flag))
+        fail("{} applies to --refraction distance-maps only, not --refraction {}", flag, args.refraction);
+}
+
 }  // namespace
 
 Command add_render(CLI::App& app) {
@@ -569,19 +579,13 @@ Command add_render(CLI::App& app) {
          "-o,--output", args->output,
          "image: .png (8-bit sRGB) or .exr (linear float); %d or %0Nd in the name: one image per frame")
       ->capture_default_str();
-  std::string methods;
-  for (const ShadowMethodInfo& info : kShadowMethods)
-    methods += fmt::format("{}{} ({})", methods.empty() ? "" : "; ", info.name, info.summary);
-  sub->add_option("--shadows", args->shadows, methods + " (default: voxel; the references: reference)");
-  sub->add_option("--shadow-res", args->shadow_res,
-                  "columns along the longer side of the light's grid, and its slabs (voxel, uniform, filter, "
-                  "opaque)")
-      ->check(CLI::Range(3u, 4096u))
-      ->capture_default_str();
+  add_shadows_option(*sub, args->shadows, "shadow method (the references trace exact shadows)")
+      ->default_str("voxel");
+  add_grid_option(*sub, "--shadow-res", GridKind::kShadow, args->shadow_res)->capture_default_str();
   sub->add_option("--mode", args->mode,
                   "voxel: center (default; each column's write count is its centre ray's crossings) or "
                   "conservative (over-counts)");
-  sub->add_option("--size", args->size, "image WIDTHxHEIGHT (default: the scene camera's)");
+  add_size_option(*sub, args->size)->default_str("the scene camera's");
   sub->add_option("--bias", args->bias, "slabs (or depth-map texels) receivers move towards the light")
       ->check(CLI::Range(0.0f, 64.0f))
       ->capture_default_str();
@@ -592,9 +596,7 @@ Command add_render(CLI::App& app) {
   for (const RefractionMethodInfo& info : kRefractionMethods)
     refractions += fmt::format("{}{} ({})", refractions.empty() ? "" : "; ", info.name, info.summary);
   sub->add_option("--refraction", args->refraction, refractions)->capture_default_str();
-  sub->add_option("--res", args->res, "voxel refraction: voxels along the scene's longest side")
-      ->check(CLI::Range(2u, 4096u))
-      ->capture_default_str();
+  add_grid_option(*sub, "--res", GridKind::kRefraction, args->res)->capture_default_str();
   sub->add_option(
          "--step", args->step,
          "voxel refraction's march: papers (fixed step h / cos theta along the dominant axis) or dda "
@@ -640,11 +642,10 @@ Command add_render(CLI::App& app) {
       "measure against the Embree reference: refraction against the matched reference (image, exit "
       "directions, event sequences), or without refraction the shadows at the same receivers; writes "
       "OUT.error.png");
-  sub->add_option("--device", args->device, "OpenCL device P:D or name substring (also $VOXR_DEVICE)");
-  sub->add_option("--report", args->report, "write a JSON report (times, light grid, errors)");
-  sub->add_flag("--profile", args->profile, "print a per-kernel time table");
-  sub->add_flag("-q,--quiet", args->quiet, "print nothing but errors");
+  add_device_option(*sub, args->device);
+  add_report_options(*sub, args->report, args->profile, args->quiet, "times, grids, light grid and errors");
   return {sub, [args, sub] {
+            check_method_flags(*args, *sub);
             args->grids_given = sub->count("--res") + sub->count("--shadow-res") > 0;
             return run_render(*args);
           }};

@@ -18,6 +18,7 @@
 
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
+#include "cli/option_groups.h"
 #include "cli/parse_args.h"
 #include "cli/prepared_runtime.h"
 #include "cli/process.h"
@@ -389,8 +390,7 @@ Command add_voxelize(CLI::App& app) {
                   "mesh (" + mesh_extensions() + ") or scene file; omitted: the built-in default scene");
   sub->add_option("-o,--output", args->output,
                   "output volume: .nrrd, .vti, .binvox (cubic: --res N gives N^3), .vox (<=256)");
-  sub->add_option("--res", args->res, "voxels along the longest axis of the scene bounds (default 256)")
-      ->check(CLI::Range(1u, kMaxGridDim));
+  add_grid_option(*sub, "--res", GridKind::kVoxel, args->res)->default_str("256, or the scene's grid");
   sub->add_option("--dims", args->dims, "exact grid dimensions X,Y,Z");
   sub->add_option(
       "--bounds", args->bounds,
@@ -411,8 +411,8 @@ Command add_voxelize(CLI::App& app) {
   sub->add_option("--channels", args->channels,
                   "comma list of occ,count,normal,material (inside comes with --solid)")
       ->capture_default_str();
-  sub->add_option("--device", args->device, "OpenCL device P:D or name substring (also $VOXR_DEVICE)");
-  sub->add_option("--report", args->report, "write a JSON report of counts and times");
+  add_device_option(*sub, args->device);
+  add_report_options(*sub, args->report, args->profile, args->quiet, "counts, grid, memory and times");
   sub->add_option("--error-target", args->error_target,
                   "choose the smallest resolution (16..1024) whose surface lies within E of the triangles: "
                   "two-sided mean surface distance over the longest side, measured per candidate; reports "
@@ -421,8 +421,6 @@ Command add_voxelize(CLI::App& app) {
   sub->add_option("--rows-per-copy", args->rows_per_copy, "rows one raster work item walks (tuning)")
       ->check(CLI::Range(1u, 4096u))
       ->capture_default_str();
-  sub->add_flag("--profile", args->profile, "print a per-kernel time table");
-  sub->add_flag("-q,--quiet", args->quiet, "print nothing but errors");
   sub->add_flag("--view", args->view, "open the written volume (.vti, .nrrd) in voxr-view");
   return {sub, [args] { return run_voxelize(*args); }};
 }

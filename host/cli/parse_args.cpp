@@ -49,14 +49,24 @@ WorldBox parse_bounds(const std::string& text, const std::string& flag) {
 }
 
 glm::uvec2 parse_size(const std::string& text, const std::string& flag) {
+  // A side as a finite number, else NaN (the message then names the whole value, not the side).
+  const auto side = [](const std::string& part) {
+    size_t used = 0;
+    double v = std::nan("");
+    try {
+      v = std::stod(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    return used != 0 && used == part.size() && std::isfinite(v) ? v : std::nan("");
+  };
   const size_t x = text.find_first_of("xX");
-  if (x == std::string::npos) fail("{} '{}': expected WIDTHxHEIGHT, e.g. 640x480", flag, text);
-  const std::vector<double> w = parse_numbers(text.substr(0, x), 1, flag);
-  const std::vector<double> h = parse_numbers(text.substr(x + 1), 1, flag);
-  if (w[0] < 1 || h[0] < 1 || w[0] > 16384 || h[0] > 16384 || w[0] != std::floor(w[0]) ||
-      h[0] != std::floor(h[0]))
+  const double w = x == std::string::npos ? std::nan("") : side(text.substr(0, x));
+  const double h = x == std::string::npos ? std::nan("") : side(text.substr(x + 1));
+  if (std::isnan(w) || std::isnan(h)) fail("{} '{}': expected WIDTHxHEIGHT, e.g. 640x480", flag, text);
+  if (w < 1 || h < 1 || w > 16384 || h > 16384 || w != std::floor(w) || h != std::floor(h))
     fail("{} '{}': width and height must be whole numbers in 1..16384", flag, text);
-  return {uint32_t(w[0]), uint32_t(h[0])};
+  return {uint32_t(w), uint32_t(h)};
 }
 
 }  // namespace voxr::cli
