@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config clang-format
   pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers opencl-c-headers clinfo
   libglm-dev libcgal-dev libassimp-dev nlohmann-json3-dev libfmt-dev libcli11-dev
-  libopenimageio-dev openimageio-tools libembree-dev libvtk9-dev
+  libpng-dev libopenexr-dev libstb-dev libopenimageio-dev openimageio-tools libembree-dev libvtk9-dev
   libgtest-dev libbenchmark-dev python3-matplotlib xvfb xauth libopenvdb-dev libboost-iostreams-dev
   glmark2-data libcgal-demo
 )

@@ -1,8 +1,10 @@
-// PNG and EXR files through OpenImageIO (io/image_file.h): EXR keeps linear floats exactly, PNG stores
-// sRGB-encoded 8-bit colour and decodes back within a quantization step, errors name the file, and a
-// failed write leaves nothing behind.
+// PNG and EXR files (io/image_file.h): EXR keeps linear floats exactly, PNG stores sRGB-encoded 8-bit colour
+// and decodes back within a quantization step, OpenImageIO (an independent reader and writer) agrees both
+// ways, errors name the file, and a failed write leaves nothing behind.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -77,6 +79,68 @@ TEST(ImageFile, PngStoresSrgbAndDecodesWithinAStep) {
   EXPECT_NEAR(linear_to_srgb(read_image(dir.path() / "grey.png").at(0, 0).x) * 255.0f, 188.0f, 0.5f);
 }
 
+TEST(ImageFile, AnotherReaderOpensWhatVoxrWrites) {
+  test::TempDir dir;
+  ImageRgba image = gradient();
+  image.at(2, 1) = glm::vec4(7.25f, 0.0f, 1e-4f, 1.0f);
+  for (const char* name : {"o.png", "o.exr"}) {
+    const fs::path path = dir.path() / name;
+    write_image(image, path);
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);  // colour as stored, not multiplied by alpha
+    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path.string(), &config);
+    ASSERT_TRUE(in) << name << ": " << OIIO::geterror();
+    ASSERT_EQ(in->spec().width, int(image.width));
+    ASSERT_EQ(in->spec().height, int(image.height));
+    ASSERT_EQ(in->spec().nchannels, 4);
+    const bool png = std::string(name) == "o.png";
+    std::vector<float> values(image.pixels.size() * 4);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, values.data()));
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+      for (int c = 0; c < 4; ++c) {
+        const float v = image.pixels[i][c];
+        const float expected = !png ? v : c == 3 ? v : linear_to_srgb(v);
+        EXPECT_NEAR(values[4 * i + c], expected, png ? 0.5f / 255.0f + 1e-6f : 0.0f) << name << " " << i;
+      }
+  }
+}
+
+TEST(ImageFile, ReadsGreyAndRgbFilesOfAnotherWriter) {
+  test::TempDir dir;
+  const auto write = [&](const fs::path& path, int channels, OIIO::TypeDesc type, const void* data) {
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path.string());
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(path.string(), OIIO::ImageSpec(3, 2, channels, type)));
+    ASSERT_TRUE(out->write_image(type, data));
+    out->close();
+  };
+  const uint8_t grey[6] = {0, 51, 102, 153, 204, 255};
+  write(dir.path() / "grey.png", 1, OIIO::TypeDesc::UINT8, grey);
+  const ImageRgba g = read_image(dir.path() / "grey.png");
+  ASSERT_EQ(g.width, 3u);
+  for (int i = 0; i < 6; ++i) {
+    const float v = srgb_to_linear(grey[i] / 255.0f);
+    EXPECT_NEAR(g.pixels[i].x, v, 1e-6f);
+    EXPECT_EQ(g.pixels[i].y, g.pixels[i].x);
+    EXPECT_EQ(g.pixels[i].z, g.pixels[i].x);
+    EXPECT_EQ(g.pixels[i].w, 1.0f);  // no alpha: opaque
+  }
+  const float rgb[18] = {0.5f, 2.0f, 0.0f, 1e-3f, 1, 1, 3, 3, 3, 0, 0, 0, 9, 8, 7, 0.25f, 0.125f, 64};
+  for (const char* name : {"rgb.exr", "rgb.hdr"}) {
+    write(dir.path() / name, 3, OIIO::TypeDesc::FLOAT, rgb);
+    const ImageRgba f = read_image(dir.path() / name);
+    ASSERT_EQ(f.height, 2u);
+    const bool exact = std::string(name) == "rgb.exr";
+    for (int i = 0; i < 6; ++i) {
+      // RGBE: 8-bit mantissas under the pixel's largest component's exponent.
+      const float step = std::max({rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]}) / 128.0f;
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(f.pixels[i][c], rgb[3 * i + c], exact ? 0.0f : step) << name << i << c;
+      EXPECT_EQ(f.pixels[i].w, 1.0f);
+    }
+  }
+}
+
 TEST(ImageFile, ErrorsNameTheFileAndLeaveNothing) {
   test::TempDir dir;
   const ImageRgba image = gradient();
@@ -90,11 +154,17 @@ TEST(ImageFile, ErrorsNameTheFileAndLeaveNothing) {
             std::string::npos);
   EXPECT_NE(error_of([&] { read_image(dir.path() / "none.png"); }).find("none.png: no such file"),
             std::string::npos);
-  const fs::path garbage = dir.write("garbage.png", "not a png at all");
-  EXPECT_NE(error_of([&] { read_image(garbage); }).find("garbage.png: cannot read the image"),
+  for (const char* name : {"garbage.png", "garbage.exr", "garbage.hdr"}) {
+    const fs::path garbage = dir.write(name, "not an image at all");
+    EXPECT_NE(error_of([&] { read_image(garbage); }).find(std::string(name) + ": cannot read the image"),
+              std::string::npos)
+        << name;
+  }
+  EXPECT_NE(error_of([&] { read_image(dir.write("t.tga", "x")); }).find("t.tga: unsupported image format"),
             std::string::npos);
   size_t files = 0;
-  for (const auto& e : fs::directory_iterator(dir.path())) files += e.path().filename() != "garbage.png";
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    files += e.path().stem() != "garbage" && e.path().filename() != "t.tga";
   EXPECT_EQ(files, 0u) << "a failed write left a file behind";
 }
 

@@ -1,11 +1,18 @@
 #include "io/image_file.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
+#include <png.h>
+#include <stb_image.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <exception>
 #include <memory>
 #include <vector>
 
@@ -13,17 +20,115 @@
 #include "core/file_extension.h"
 #include "io/atomic_file.h"
 
+// Each format through its own reference library: libpng (PNG), OpenEXR (EXR), stb_image (Radiance .hdr,
+// read only). They replaced OpenImageIO, whose ~250 shared libraries cost a fresh `voxr render` process
+// about 0.2 s to load before main (bench/results/render-fresh-process-*.md).
+
 namespace voxr {
 
 namespace fs = std::filesystem;
 
 namespace {
 
-// OpenImageIO's message without line breaks (an error here is one line).
+// A library's message without line breaks (an error here is one line).
 std::string one_line(std::string text) {
   std::replace(text.begin(), text.end(), '\n', ' ');
   while (!text.empty() && text.back() == ' ') text.pop_back();
   return text.empty() ? "unknown error" : text;
+}
+
+std::vector<char> encode_png(const ImageRgba& image, const std::string& name) {
+  std::vector<uint8_t> encoded(image.pixels.size() * 4);
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const glm::vec4& p = image.pixels[i];
+    for (int c = 0; c < 3; ++c) encoded[4 * i + c] = uint8_t(std::lround(255.0f * linear_to_srgb(p[c])));
+    encoded[4 * i + 3] = uint8_t(std::lround(255.0f * std::clamp(p.w, 0.0f, 1.0f)));
+  }
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  png.width = image.width;
+  png.height = image.height;
+  png.format = PNG_FORMAT_RGBA;  // sRGB-encoded, alpha not premultiplied
+  png_alloc_size_t size = 0;
+  if (!png_image_write_get_memory_size(png, size, 0, encoded.data(), 0, nullptr))
+    fail("{}: cannot encode the image: {}", name, one_line(png.message));
+  std::vector<char> bytes(size);
+  if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, encoded.data(), 0, nullptr))
+    fail("{}: cannot encode the image: {}", name, one_line(png.message));
+  bytes.resize(size);
+  return bytes;
+}
+
+std::vector<char> encode_exr(const ImageRgba& image) {
+  Imf::Header header(int(image.width), int(image.height));
+  const char* names[4] = {"R", "G", "B", "A"};
+  for (const char* n : names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
+  Imf::StdOSStream stream;
+  {
+    Imf::OutputFile file(stream, header);
+    Imf::FrameBuffer frame;
+    char* base = reinterpret_cast<char*>(const_cast<glm::vec4*>(image.pixels.data()));
+    for (int c = 0; c < 4; ++c)
+      frame.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), sizeof(glm::vec4),
+                                        sizeof(glm::vec4) * image.width));
+    file.setFrameBuffer(frame);
+    file.writePixels(int(image.height));
+  }  // the file's destructor writes the line offsets
+  const std::string text = stream.str();
+  return std::vector<char>(text.begin(), text.end());
+}
+
+ImageRgba decode_png(const std::string& name) {
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&png, name.c_str()))
+    fail("{}: cannot read the image: {}", name, one_line(png.message));
+  png.format = PNG_FORMAT_RGBA;  // grey and palette images expanded, no alpha -> opaque, 16 bits -> 8
+  std::vector<uint8_t> values(PNG_IMAGE_SIZE(png));
+  if (!png_image_finish_read(&png, nullptr, values.data(), 0, nullptr))
+    fail("{}: cannot read the image: {}", name, one_line(png.message));
+  ImageRgba image(png.width, png.height);
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    for (int c = 0; c < 4; ++c) {
+      const float v = values[4 * i + c] / 255.0f;
+      image.pixels[i][c] = c < 3 ? srgb_to_linear(v) : v;
+    }
+  return image;
+}
+
+ImageRgba decode_exr(const std::string& name) {
+  Imf::InputFile file(name.c_str());
+  const Imath::Box2i window = file.header().dataWindow();
+  const int64_t width = int64_t(window.max.x) - window.min.x + 1;
+  const int64_t height = int64_t(window.max.y) - window.min.y + 1;
+  if (width <= 0 || height <= 0 || width * height > (int64_t(1) << 28)) fail("{}: not a 2-D image", name);
+  ImageRgba image(uint32_t(width), uint32_t(height), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  // Slices are addressed by the data window's coordinates: shift the base to its origin.
+  char* base = reinterpret_cast<char*>(image.pixels.data()) -
+               (int64_t(window.min.x) + int64_t(window.min.y) * width) * int64_t(sizeof(glm::vec4));
+  const size_t x_stride = sizeof(glm::vec4), y_stride = sizeof(glm::vec4) * size_t(width);
+  const Imf::ChannelList& channels = file.header().channels();
+  const bool grey = !channels.findChannel("R") && channels.findChannel("Y");
+  Imf::FrameBuffer frame;
+  const char* names[4] = {grey ? "Y" : "R", "G", "B", "A"};
+  for (int c = 0; c < (grey ? 1 : 3); ++c)
+    frame.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), x_stride, y_stride, 1, 1, 0.0));
+  frame.insert("A", Imf::Slice(Imf::FLOAT, base + 3 * sizeof(float), x_stride, y_stride, 1, 1, 1.0));
+  file.setFrameBuffer(frame);
+  file.readPixels(window.min.y, window.max.y);
+  if (grey)
+    for (glm::vec4& p : image.pixels) p.y = p.z = p.x;
+  return image;
+}
+
+ImageRgba decode_hdr(const std::string& name) {
+  int width = 0, height = 0, channels = 0;
+  std::unique_ptr<float, void (*)(void*)> values(stbi_loadf(name.c_str(), &width, &height, &channels, 4),
+                                                 stbi_image_free);
+  if (!values) fail("{}: cannot read the image: {}", name, one_line(stbi_failure_reason()));
+  ImageRgba image{uint32_t(width), uint32_t(height)};
+  std::copy_n(values.get(), size_t(width) * height * 4, &image.pixels[0].x);
+  return image;
 }
 
 }  // namespace
@@ -50,68 +155,36 @@ void write_image(const ImageRgba& image, const fs::path& path) {
   if (image.width == 0 || image.height == 0 || image.pixels.size() != size_t(image.width) * image.height)
     fail("{}: the image is empty or its pixels do not match its size", name);
   check_output_path(path);
-
-  // Encoded in memory (OpenImageIO's IOProxy), then written through AtomicFile.
-  std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput memory(bytes);
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(name);
-  if (!out) fail("{}: OpenImageIO cannot write {}: {}", name, ext, one_line(OIIO::geterror()));
-  const bool png = ext == ".png";
-  OIIO::ImageSpec spec(int(image.width), int(image.height), 4,
-                       png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
-  void* proxy = &memory;
-  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-  if (png) spec.attribute("oiio:ColorSpace", "sRGB");
-  // Colour is stored as given, not divided by alpha (OpenImageIO assumes premultiplied input otherwise).
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  if (!out->open(name, spec)) fail("{}: cannot encode the image: {}", name, one_line(out->geterror()));
-  bool ok;
-  if (png) {
-    std::vector<uint8_t> encoded(image.pixels.size() * 4);
-    for (size_t i = 0; i < image.pixels.size(); ++i) {
-      const glm::vec4& p = image.pixels[i];
-      for (int c = 0; c < 3; ++c) encoded[4 * i + c] = uint8_t(std::lround(255.0f * linear_to_srgb(p[c])));
-      encoded[4 * i + 3] = uint8_t(std::lround(255.0f * std::clamp(p.w, 0.0f, 1.0f)));
-    }
-    ok = out->write_image(OIIO::TypeDesc::UINT8, encoded.data());
+  // Encoded in memory, then written through AtomicFile.
+  std::vector<char> bytes;
+  if (ext == ".png") {
+    bytes = encode_png(image, name);
   } else {
-    ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
+    try {
+      bytes = encode_exr(image);
+    } catch (const std::exception& e) {
+      fail("{}: cannot encode the image: {}", name, one_line(e.what()));
+    }
   }
-  ok = out->close() && ok;
-  if (!ok) fail("{}: cannot encode the image: {}", name, one_line(out->geterror()));
   AtomicFile file(path);
   file.write(bytes.data(), bytes.size());
   file.commit();
 }
 
 ImageRgba read_image(const fs::path& path) {
-  const std::string name = path.string();
+  const std::string name = path.string(), ext = lower_extension(path);
   std::error_code ec;
   if (!fs::exists(path, ec)) fail("{}: no such file", name);
-  // Colour as stored, not multiplied by alpha on the way in.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(name, &config);
-  if (!in) fail("{}: cannot read the image: {}", name, one_line(OIIO::geterror()));
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1)
-    fail("{}: not a 2-D image", name);
-  ImageRgba image(uint32_t(spec.width), uint32_t(spec.height), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-  std::vector<float> values(size_t(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data()))
-    fail("{}: cannot read the image: {}", name, one_line(in->geterror()));
-  const bool srgb = spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::UINT16;
-  const int channels = spec.nchannels;
-  for (size_t i = 0; i < image.pixels.size(); ++i) {
-    glm::vec4& p = image.pixels[i];
-    const float* v = values.data() + i * size_t(channels);
-    for (int c = 0; c < 3; ++c) {
-      const float x = v[channels >= 3 ? c : 0];
-      p[c] = srgb ? srgb_to_linear(x) : x;
-    }
-    if (channels == 4 || channels == 2) p.w = v[channels - 1];
+  if (ext == ".png") return decode_png(name);
+  if (ext == ".hdr") return decode_hdr(name);
+  if (ext != ".exr") fail("{}: unsupported image format '{}' (readable: .png, .exr, .hdr)", name, ext);
+  try {
+    return decode_exr(name);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    fail("{}: cannot read the image: {}", name, one_line(e.what()));
   }
-  return image;
 }
 
 }  // namespace voxr

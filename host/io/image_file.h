@@ -1,5 +1,6 @@
-// Image files through OpenImageIO, by extension: `.png` (8-bit RGBA, colour sRGB-encoded from linear and
-// clamped to [0, 1], alpha stored linearly) and `.exr` (linear 32-bit float RGBA, exact). Written through
+// Image files by extension, each through its format's own library: `.png` (libpng; 8-bit RGBA, colour
+// sRGB-encoded from linear and clamped to [0, 1], alpha stored linearly), `.exr` (OpenEXR; linear 32-bit
+// float RGBA, exact) and, for reading only, Radiance `.hdr` (stb_image; linear float). Written through
 // AtomicFile (io/atomic_file.h): a file appears only once complete.
 #pragma once
 
@@ -20,8 +21,10 @@ bool is_image_file(const std::filesystem::path& file);
 // empty image, a folder that does not exist or a failed write.
 void write_image(const ImageRgba& image, const std::filesystem::path& path);
 
-// Reads `path` as linear RGBA (PNG decoded from sRGB; images without alpha get alpha 1). Throws voxr::Error
-// naming `path` when it is missing or cannot be decoded.
+// Reads `path` (.png, .exr or .hdr, by extension) as linear RGBA: PNG decoded from sRGB (16-bit files at
+// 8-bit precision; grey and palette images expanded), EXR's R, G, B (or Y) and A channels, images without
+// alpha get alpha 1. Throws voxr::Error naming `path` when it is missing, has another extension or cannot be
+// decoded.
 ImageRgba read_image(const std::filesystem::path& path);
 
 // The sRGB transfer function (IEC 61966-2-1) and its inverse, per channel, for values in [0, 1].

@@ -3,7 +3,7 @@
 //   checker     the built-in procedural lat-long checker ("environment": {"procedural": "checker"}): 32 x 16
 //               cells of 11.25 degrees, hue by longitude, bright and dark alternating, the lower half darker,
 //               so directions are told apart and tests need no files
-//   image       an equirectangular file read through OpenImageIO (.exr, .hdr, .png; PNG decoded from sRGB)
+//   image       an equirectangular file (.exr, .hdr, .png; PNG decoded from sRGB: io/image_file.h)
 // The same lookup runs on the device (shade.cl) and on the host (the reference).
 #pragma once
 
