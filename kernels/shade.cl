@@ -17,50 +17,51 @@
 #define SHADE_GROUP 64
 #endif
 
-/* L(end) for end s of pixel id, whose path leaves in exit_direction (read only where s has no surface). */
-inline float3 shade_end(const SurfaceSample* s, float3 exit_direction, uint id,
-                        __global const float4* transmittance, __global const RenderMaterial* materials,
-                        uint material_count, const RenderLight* light, __global const float* environment,
-                        uint environment_width, uint environment_height) {
-  const float3 ambient = vload3(0, light->ambient);
-  if (s->triangle == VOXR_NO_TRIANGLE) {
-    float rgb[3];
-    voxr_environment_lookup(environment, environment_width, environment_height, exit_direction.x,
-                            exit_direction.y, exit_direction.z, rgb);
-    return (float3)(rgb[0], rgb[1], rgb[2]);
-  }
-  const RenderMaterial m = materials[min(s->material, material_count - 1u)];
+/* The environment in unit direction d. */
+inline float3 shade_environment(float3 d, __global const float* environment, uint environment_width,
+                                uint environment_height) {
+  float rgb[3];
+  voxr_environment_lookup(environment, environment_width, environment_height, d.x, d.y, d.z, rgb);
+  return (float3)(rgb[0], rgb[1], rgb[2]);
+}
+
+/* L(end) for end s of pixel id, a surface (s.triangle is not VOXR_NO_TRIANGLE). */
+inline float3 shade_surface(SurfaceSample s, uint id, __global const float4* transmittance,
+                            __global const RenderMaterial* materials, uint material_count,
+                            RenderLight light) {
+  const float3 ambient = vload3(0, light.ambient);
+  const RenderMaterial m = materials[min(s.material, material_count - 1u)];
   if (m.kind == VOXR_MATERIAL_DIELECTRIC)
     return (float3)(voxr_shade_dielectric_flat(ambient.x, m.absorption[0]),
                     voxr_shade_dielectric_flat(ambient.y, m.absorption[1]),
                     voxr_shade_dielectric_flat(ambient.z, m.absorption[2]));
-  const float3 p = vload3(0, s->position);
-  float3 to_light, irradiance = vload3(0, light->intensity);
-  if (light->directional) {
-    to_light = -vload3(0, light->direction);
+  const float3 p = vload3(0, s.position);
+  float3 to_light, irradiance = vload3(0, light.intensity);
+  if (light.directional) {
+    to_light = -vload3(0, light.direction);
   } else {
-    const float3 d = vload3(0, light->position) - p;
+    const float3 d = vload3(0, light.position) - p;
     const float dist2 = dot(d, d);
     to_light = d * rsqrt(dist2);
     irradiance /= dist2;
   }
-  const float cos_theta = dot(vload3(0, s->normal), to_light);
+  const float cos_theta = dot(vload3(0, s.normal), to_light);
   const float3 t = transmittance[id].xyz;
   return (float3)(voxr_shade_surface(m.color[0], ambient.x, irradiance.x, cos_theta, t.x),
                   voxr_shade_surface(m.color[1], ambient.y, irradiance.y, cos_theta, t.y),
                   voxr_shade_surface(m.color[2], ambient.z, irradiance.z, cos_theta, t.z));
 }
 
-/* The colour of pixel id under its identity path: L(primary sample). */
-inline float3 shade_identity(const SurfaceSample* s, const RenderCamera* cam, uint id,
-                             __global const float4* transmittance, __global const RenderMaterial* materials,
-                             uint material_count, const RenderLight* light, __global const float* environment,
-                             uint environment_width, uint environment_height) {
-  const float3 dir = s->triangle == VOXR_NO_TRIANGLE
-                         ? rp_camera_direction(cam, id % cam->width, id / cam->width)
-                         : (float3)(0.0f);
-  return shade_end(s, dir, id, transmittance, materials, material_count, light, environment,
-                   environment_width, environment_height);
+/* The colour of pixel id under its identity path: L(primary sample), the environment in the camera ray's
+ * direction where it has no surface. */
+inline float3 shade_identity(SurfaceSample s, RenderCamera cam, uint id, __global const float4* transmittance,
+                             __global const RenderMaterial* materials, uint material_count, RenderLight light,
+                             __global const float* environment, uint environment_width,
+                             uint environment_height) {
+  if (s.triangle == VOXR_NO_TRIANGLE)
+    return shade_environment(rp_camera_direction(&cam, id % cam.width, id / cam.width), environment,
+                             environment_width, environment_height);
+  return shade_surface(s, id, transmittance, materials, material_count, light);
 }
 
 __kernel __attribute__((reqd_work_group_size(SHADE_GROUP, 1, 1))) void shade(
@@ -73,15 +74,17 @@ __kernel __attribute__((reqd_work_group_size(SHADE_GROUP, 1, 1))) void shade(
   if (id >= cam.width * cam.height) return;
   const SurfaceSample s0 = primary[id];
   if (!rp_sees_dielectric(s0, materials, material_count)) {
-    image[id] = (float4)(shade_identity(&s0, &cam, id, transmittance, materials, material_count, &light,
+    image[id] = (float4)(shade_identity(s0, cam, id, transmittance, materials, material_count, light,
                                         environment, environment_width, environment_height),
                          1.0f);
     return;
   }
   const SurfaceSample s = ends[id];
   const RefractionPath path = paths[id];
-  float3 c = shade_end(&s, vload3(0, path.exit_direction), id, transmittance, materials, material_count,
-                       &light, environment, environment_width, environment_height);
+  float3 c = s.triangle == VOXR_NO_TRIANGLE
+                 ? shade_environment(vload3(0, path.exit_direction), environment, environment_width,
+                                     environment_height)
+                 : shade_surface(s, id, transmittance, materials, material_count, light);
   c = (path.events & VOXR_PATH_LOST) ? (float3)(0.0f) : vload3(0, path.throughput) * c;
   if (path.fresnel > 0.0f) {
     float rgb[3];
@@ -100,7 +103,7 @@ __kernel __attribute__((reqd_work_group_size(SHADE_GROUP, 1, 1))) void shade_pri
   const uint id = get_global_id(0);
   if (id >= cam.width * cam.height) return;
   const SurfaceSample s = primary[id];
-  image[id] = (float4)(shade_identity(&s, &cam, id, transmittance, materials, material_count, &light,
+  image[id] = (float4)(shade_identity(s, cam, id, transmittance, materials, material_count, light,
                                       environment, environment_width, environment_height),
                        1.0f);
 }
