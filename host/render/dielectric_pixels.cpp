@@ -18,7 +18,7 @@ void DielectricPixels::find(const cl::Buffer& primary_samples, uint32_t pixels, 
   pixels_ = pixels;
   cl::Buffer& list = list_.ensure(cl_, uint64_t(pixels) * sizeof(cl_uint), "dielectric pixels");
   cl::Buffer& count = count_.ensure(cl_, sizeof(cl_uint), "dielectric pixel count");
-  cl_.fill_zero(count, sizeof(cl_uint), "dielectric pixels");
+  cl_.fill_zero(count, sizeof(cl_uint), "dielectric count");
   cl::Kernel kernel = cl_.kernel("dielectric_pixels.cl", "dielectric_pixels");
   cl_.launch("dielectric pixels", kernel, pixels, kGroup, primary_samples, cl_uint(pixels), materials,
              cl_uint(material_count), list, count, end_samples);
