@@ -1,6 +1,7 @@
 /* distance_maps.cl — refraction by layered distance maps (host/render/distance_map_refraction.h): GPU Gems 3,
- * chapter 17 (Umenhoffer, Patow, Szirmay-Kalos 2007). One work item per pixel. A pixel whose primary sample
- * is a dielectric refracts there (rp_front_surface) and then, segment by segment, searches the cube maps
+ * chapter 17 (Umenhoffer, Patow, Szirmay-Kalos 2007). One work item per pixel that sees a dielectric (the
+ * list of dielectric_pixels.cl; only those pixels' ends and paths are written): its primary sample
+ * refracts there (rp_front_surface) and then, segment by segment, searches the cube maps
  * about the reference point for the ray's next surface: the linear search steps along the ray and, per map
  * (each refractor layer and the environment layer), compares the ray point's distance from the reference
  * point with the distance the map stores in the point's direction (nearest texel); a sign change between
@@ -172,18 +173,19 @@ inline float dm_sphere_exit(float3 v, float3 d, float r) {
 }
 
 __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void distance_maps(
-    RenderCamera cam, __global const SurfaceSample* primary, __global const SurfaceSample* layers,
+    RenderCamera cam, __global const SurfaceSample* primary, __global const uint* pixel_list,
+    __global const uint* pixel_count, __global const SurfaceSample* layers,
     __global const SurfaceSample* environment, __global const float* distances,
     __global const RenderMaterial* materials, uint material_count, DistanceMapParams p,
     __global SurfaceSample* ends, __global RefractionPath* paths) {
-  const uint id = get_global_id(0);
-  if (id >= cam.width * cam.height) return;
+  uint id;
+  if (!rp_listed_pixel(pixel_list, pixel_count, get_global_id(0), &id)) return;
   const float3 camera_dir = rp_camera_direction(&cam, id % cam.width, id / cam.width);
   const SurfaceSample s = primary[id];
   RefractionPath path;
   float3 d;
   float cos_i;
-  if (!rp_front_surface(s, camera_dir, materials, material_count, id, ends, paths, &path, &d, &cos_i)) return;
+  rp_front_surface(s, camera_dir, materials, material_count, &path, &d, &cos_i);
   float3 throughput = (float3)(1.0f - path.fresnel);
   uint events = 1u;
   float3 o = vload3(0, s.position);

@@ -1,10 +1,11 @@
 /* image_space.cl — image-space refraction (host/render/image_space_refraction.h): Wyman 2005, "An Approximate
- * Image-Space Approach for Interactive Refraction", with nearby geometry (Wyman, GRAPHITE 2005). One work
- * item per pixel. A pixel whose primary sample is a dielectric refracts there (exact position, interpolated
+ * Image-Space Approach for Interactive Refraction", with nearby geometry (Wyman, GRAPHITE 2005). A pixel
+ * whose primary sample is a dielectric refracts there (exact position, interpolated
  * normal), estimates the distance to the back surface from the back-face buffer's depth (d_V) and the
  * front hit's precomputed inward distance (d_N), reads the back-face buffer's normal where the estimated exit
  * point P2 projects, refracts out, and finds what the exit ray sees by the paper's iterative lookup in the
- * opaque surfaces' visibility buffer; every other pixel gets its identity path. The path model is
+ * opaque surfaces' visibility buffer. The work items run over the list of those pixels
+ * (dielectric_pixels.cl): only the listed pixels' ends and paths are written. The path model is
  * refraction.h's: Schlick F at the front surface, 1 - F per refraction, Beer-Lambert over d, total internal
  * reflection mirrors and costs nothing.
  *
@@ -56,20 +57,20 @@ inline float is_inward_distance(const SurfaceSample* s, __global const uint4* tr
 }
 
 __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void image_space(
-    RenderCamera cam, __global const SurfaceSample* primary, __global const SurfaceSample* back,
+    RenderCamera cam, __global const SurfaceSample* primary, __global const uint* pixel_list,
+    __global const uint* pixel_count, __global const SurfaceSample* back,
     __global const SurfaceSample* opaque, __global const RenderMaterial* materials, uint material_count,
     __global const uint4* triangles, __global const float* inward, ImageSpaceParams p,
     __global SurfaceSample* ends, __global RefractionPath* paths) {
-  const uint id = get_global_id(0);
-  const uint pixels = cam.width * cam.height;
-  if (id >= pixels) return;
+  uint id;
+  if (!rp_listed_pixel(pixel_list, pixel_count, get_global_id(0), &id)) return;
   const float3 dir = rp_camera_direction(&cam, id % cam.width, id / cam.width);
   const SurfaceSample s = primary[id];
   /* 1. The front surface, exact: Schlick's F reflects the environment, 1 - F refracts in. */
   RefractionPath path;
   float3 t1;
   float cos_i;
-  if (!rp_front_surface(s, dir, materials, material_count, id, ends, paths, &path, &t1, &cos_i)) return;
+  rp_front_surface(s, dir, materials, material_count, &path, &t1, &cos_i);
   const uint m0 = min(s.material, material_count - 1u);
   const RenderMaterial glass = materials[m0];
   const float ior = glass.ior;

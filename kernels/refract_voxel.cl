@@ -1,7 +1,8 @@
 /* refract_voxel.cl — voxel refraction (host/render/voxel_refraction.h): Chang & Lai TR 1688 §5 (two
- * surfaces) and PG 2011 §5 (multiple surfaces, Snell-law marching). One work item per pixel: a pixel whose
+ * surfaces) and PG 2011 §5 (multiple surfaces, Snell-law marching). A pixel whose
  * primary sample is a dielectric refracts there with the interpolated normal (exact), then marches the
- * scene's voxel grid; every other pixel gets its identity path. The path model is refraction.h's.
+ * scene's voxel grid. One work item per pixel of the list of those (dielectric_pixels.cl): the ends and paths
+ * of the listed pixels are written, nothing else. The path model is refraction.h's.
  *
  * Grid units throughout the march (voxel (i, j, k) = [i, i+1] x [j, j+1] x [k, k+1]); the grid is axis
  * aligned, so directions are the same in world and grid frames and lengths scale by voxel_size. */
@@ -194,17 +195,18 @@ inline int same_brick(float3 q, int i, int j, int k) {
 
 __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_voxel(
     VOXR_GRID_VIEW_PARAMS, RenderCamera cam, __global const SurfaceSample* primary,
+    __global const uint* pixel_list, __global const uint* pixel_count,
     __global const RenderMaterial* materials, uint material_count, VoxelRefractParams p,
     __global const uint* bricks, __global SurfaceSample* ends, __global RefractionPath* paths) {
-  const uint id = get_global_id(0);
-  if (id >= cam.width * cam.height) return;
+  uint id;
+  if (!rp_listed_pixel(pixel_list, pixel_count, get_global_id(0), &id)) return;
   const GridView g = VOXR_GRID_VIEW();
   float3 dir = rp_camera_direction(&cam, id % cam.width, id / cam.width);
   const SurfaceSample s = primary[id];
   RefractionPath path;
   float3 t_dir;
   float cos_i;
-  if (!rp_front_surface(s, dir, materials, material_count, id, ends, paths, &path, &t_dir, &cos_i)) return;
+  rp_front_surface(s, dir, materials, material_count, &path, &t_dir, &cos_i);
   const uint m0 = min(s.material, material_count - 1u);
   const float3 n_front = vload3(0, s.normal);
   float3 throughput = (float3)(1.0f - path.fresnel);

@@ -1,6 +1,7 @@
-/* refraction_path.h — what every refraction kernel (refract_voxel.cl, image_space.cl) shares: the camera
- * ray of a pixel, the identity path of a pixel that sees no dielectric, Snell refraction of a vector, the
- * exact front surface, and an end without a surface. OpenCL only; the interface optics themselves are in
+/* refraction_path.h — what every refraction kernel (refract_voxel.cl, image_space.cl, distance_maps.cl)
+ * shares: the camera ray of a pixel, the identity path of a pixel that sees no dielectric, which pixels see
+ * one and the list of them a refraction kernel runs over, Snell refraction of a vector, the exact front
+ * surface, and an end without a surface. OpenCL only; the interface optics themselves are in
  * refraction.h. */
 #ifndef VOXR_REFRACTION_PATH_H
 #define VOXR_REFRACTION_PATH_H
@@ -74,27 +75,36 @@ inline SurfaceSample rp_no_surface(void) {
   return s;
 }
 
-/* Every refraction kernel's start at pixel `id`, whose camera ray (direction dir) sees primary sample s. A
- * pixel that sees no dielectric gets its identity path and its sample as the end, written, and 0 is returned.
- * Otherwise the front surface, exact: *path receives Schlick's F and the mirror direction (the environment it
- * reflects), *t the refracted direction (n1 = 1 < n2: never total internal reflection), *cos_i the incidence
- * cosine; returns 1. */
-inline int rp_front_surface(SurfaceSample s, float3 dir, __global const RenderMaterial* materials,
-                            uint material_count, uint id, __global SurfaceSample* ends,
-                            __global RefractionPath* paths, RefractionPath* path, float3* t, float* cos_i) {
+/* Whether primary sample s is a dielectric surface: the pixels a refraction method traces
+ * (dielectric_pixels.cl lists them; shade.cl reads their paths). */
+inline int rp_sees_dielectric(SurfaceSample s, __global const RenderMaterial* materials,
+                              uint material_count) {
+  return s.triangle != VOXR_NO_TRIANGLE &&
+         materials[min(s.material, material_count - 1u)].kind == VOXR_MATERIAL_DIELECTRIC;
+}
+
+/* The pixel of work item `slot` of a refraction kernel run over the list of pixels that see a dielectric
+ * (dielectric_pixels.cl): 1 and the pixel's index in *id, or 0 past the list's device-side count. */
+inline int rp_listed_pixel(__global const uint* pixel_list, __global const uint* pixel_count, uint slot,
+                           uint* id) {
+  if (slot >= *pixel_count) return 0;
+  *id = pixel_list[slot];
+  return 1;
+}
+
+/* Every refraction kernel's start at a listed pixel, whose camera ray (direction dir) sees primary sample s,
+ * a dielectric: the front surface, exact. *path receives the identity path with Schlick's F and the mirror
+ * direction (the environment it reflects), *t the refracted direction (n1 = 1 < n2: never total internal
+ * reflection), *cos_i the incidence cosine. */
+inline void rp_front_surface(SurfaceSample s, float3 dir, __global const RenderMaterial* materials,
+                             uint material_count, RefractionPath* path, float3* t, float* cos_i) {
   const uint m0 = min(s.material, material_count - 1u);
-  if (s.triangle == VOXR_NO_TRIANGLE || materials[m0].kind != VOXR_MATERIAL_DIELECTRIC) {
-    ends[id] = s;
-    paths[id] = rp_identity(dir);
-    return 0;
-  }
   *path = rp_identity(dir);
   const float3 n_front = vload3(0, s.normal); /* turned towards the eye: outward here */
   const float ior = materials[m0].ior;
   rp_refract(dir, n_front, 1.0f, ior, t, cos_i);
   path->fresnel = voxr_schlick(*cos_i, 1.0f, ior);
   rp_store3(path->reflect_direction, rp_reflect(dir, n_front));
-  return 1;
 }
 
 /* The parity media stack (refraction.h) at a surface of material `mat`, for a path inside media[0..depth-1]

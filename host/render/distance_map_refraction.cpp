@@ -89,8 +89,8 @@ void DistanceMapRefraction::resolve_into(const DeviceMesh& mesh, const cl::Buffe
 void DistanceMapRefraction::trace(const DeviceMesh& mesh, const cl::Buffer& vertex_normals,
                                   const CameraFrame& camera, const cl::Buffer& materials,
                                   uint32_t material_count, const RefractionOptions& options,
-                                  const cl::Buffer& primary_samples, cl::Buffer& end_samples,
-                                  cl::Buffer& paths) {
+                                  const cl::Buffer& primary_samples, const DielectricPixels& dielectric,
+                                  cl::Buffer& end_samples, cl::Buffer& paths) {
   VOXR_CHECK(material_count > 0);
   if (options.layers < 1 || options.layers > kDistanceMapMaxLayers)
     fail("distance-maps: {} layers; 1 to {} are allowed", options.layers, kDistanceMapMaxLayers);
@@ -149,9 +149,10 @@ void DistanceMapRefraction::trace(const DeviceMesh& mesh, const cl::Buffer& vert
   p.scene_radius = origin_.scene_radius;
   p.epsilon = 1e-4f * origin_.radius;
   cl::Kernel kernel = cl_.kernel("distance_maps.cl", "distance_maps");
-  const uint64_t pixels = uint64_t(camera.width) * camera.height;
-  cl_.launch("refraction", kernel, pixels, kGroup, make_render_camera(camera), primary_samples, layers,
-             environment, distances, materials, cl_uint(material_count), p, end_samples, paths);
+  VOXR_CHECK_EQ(uint64_t(dielectric.pixel_count()), uint64_t(camera.width) * camera.height);
+  cl_.launch("refraction", kernel, dielectric.pixel_count(), kGroup, make_render_camera(camera),
+             primary_samples, dielectric, layers, environment, distances, materials, cl_uint(material_count),
+             p, end_samples, paths);
 }
 
 }  // namespace voxr

@@ -32,6 +32,7 @@
 #include "core/material.h"
 #include "core/triangle_soup.h"
 #include "render/camera_frame.h"
+#include "render/dielectric_pixels.h"
 #include "render/refraction_method.h"
 #include "render/visibility_rasterizer.h"
 #include "voxelize/device_mesh.h"
@@ -74,13 +75,15 @@ class DistanceMapRefraction {
   void set_scene(const TriangleSoup& soup, const std::vector<Material>& materials);
 
   // Renders the layers (options.layers refractor layers and the environment layer, options.layer_res^2
-  // texels per face) and traces every pixel of `camera`: its end SurfaceSample and RefractionPath, from
-  // the primary samples; pixels that see no dielectric get the identity path and their primary sample.
+  // texels per face) and traces every pixel of `camera` that `dielectric` lists (found from
+  // `primary_samples`): its end SurfaceSample and RefractionPath, written at the pixel's index of
+  // `end_samples` and `paths` (nothing else is written).
   // `mesh`, `vertex_normals`, `materials` (material_count RenderMaterial) as FrameRenderer has them. Throws
   // voxr::Error for layers or layer_res out of range.
   void trace(const DeviceMesh& mesh, const cl::Buffer& vertex_normals, const CameraFrame& camera,
              const cl::Buffer& materials, uint32_t material_count, const RefractionOptions& options,
-             const cl::Buffer& primary_samples, cl::Buffer& end_samples, cl::Buffer& paths);
+             const cl::Buffer& primary_samples, const DielectricPixels& dielectric, cl::Buffer& end_samples,
+             cl::Buffer& paths);
 
   // Device memory of the layers and the buffers that build them (as allocated, after a trace).
   uint64_t device_bytes() const {

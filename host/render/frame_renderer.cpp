@@ -38,7 +38,8 @@ FrameRenderer::FrameRenderer(ClRuntime& cl)
       light_maps_(cl),
       voxel_refraction_(cl),
       image_space_(cl, rasterizer_),
-      distance_maps_(cl) {}
+      distance_maps_(cl),
+      dielectric_pixels_(cl) {}
 FrameRenderer::~FrameRenderer() = default;
 
 void FrameRenderer::prepare(const RenderOptions& options) {
@@ -49,6 +50,7 @@ void FrameRenderer::prepare(const RenderOptions& options) {
     for (const ProgramSpec& p : image_space_.programs()) specs.push_back(p);
   if (options.refraction.method == RefractionMethod::kDistanceMaps)
     for (const ProgramSpec& p : distance_maps_.programs()) specs.push_back(p);
+  if (options.refraction.method != RefractionMethod::kNone) specs.push_back(DielectricPixels::program());
   specs.push_back({"shade.cl", {}});
   specs.push_back({"refract_none.cl", {}});
   cl_.build_programs(specs);
@@ -88,6 +90,9 @@ void FrameRenderer::set_scene(const TriangleSoup& soup, const std::vector<Materi
   cl_.upload(materials_buffer_, mats.data(), mats.size() * sizeof(RenderMaterial), "upload materials");
   vertex_normals_ = upload_vertex_normals(cl_, vertex_normals(soup));
   inward_distances_set_ = false;
+  scene_has_dielectric_ = false;
+  for (const glm::uvec4& t : soup.triangles)
+    scene_has_dielectric_ = scene_has_dielectric_ || materials[t.w].kind == MaterialKind::kDielectric;
   voxel_refraction_.set_scene(soup);
   distance_maps_.set_scene(soup, materials);
 }
@@ -137,48 +142,52 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
   cl::Buffer& transmittance = transmittance_.ensure(cl_, pixels * 16, "transmittance");
 
   // Where each pixel's path through the dielectrics ends: the shadows are looked up and shading is done
-  // there.
-  cl::Buffer& paths = paths_.ensure(cl_, pixels * sizeof(RefractionPath), "refraction paths");
+  // there. Only the pixels that see a dielectric are traced; every other pixel's path is the identity and
+  // its end the primary sample. Without refraction, or with no dielectric in the scene, there is no
+  // refraction stage and no path buffer: the ends are the primary samples.
+  const RefractionMethod refraction = options.refraction.method;
+  if (refraction == RefractionMethod::kReference || refraction == RefractionMethod::kReferenceFull)
+    fail("the {} refraction renders on the host (render_refraction_reference), not in a device frame",
+         refraction_method_info(refraction).name);
+  const bool refracts = refraction != RefractionMethod::kNone && scene_has_dielectric_;
   const cl::Buffer* ends = &samples_.buffer;
-  switch (options.refraction.method) {
-    case RefractionMethod::kNone: {
-      cl::Kernel identity = cl_.kernel("refract_none.cl", "identity_paths");
-      cl_.launch("refraction", identity, pixels, kGroup, make_render_camera(camera), paths);
-      break;
+  cl::Buffer* paths = nullptr;
+  if (refracts || options.keep_samples)
+    paths = &paths_.ensure(cl_, pixels * sizeof(RefractionPath), "refraction paths");
+  if (options.keep_samples) {  // every pixel's path read back: the identity where no refraction writes one
+    cl::Kernel identity = cl_.kernel("refract_none.cl", "identity_paths");
+    cl_.launch("identity paths", identity, pixels, kGroup, make_render_camera(camera), *paths);
+  }
+  if (refracts) {
+    cl::Buffer& e = ends_.ensure(cl_, pixels * sizeof(SurfaceSample), "refraction ends");
+    dielectric_pixels_.find(samples_.buffer, uint32_t(pixels), materials_buffer_, material_count_, e);
+    switch (refraction) {
+      case RefractionMethod::kVoxelMulti:
+      case RefractionMethod::kVoxelTwo:
+        voxel_refraction_.build(options.refraction);
+        voxel_refraction_.trace(camera, samples_.buffer, dielectric_pixels_, materials_buffer_,
+                                material_count_, options.refraction, e, *paths);
+        st.refraction_grid = voxel_refraction_.grid().spec;
+        st.refraction_bytes = voxel_refraction_.grid().device_bytes();
+        break;
+      case RefractionMethod::kImageSpace:
+        if (!inward_distances_set_)
+          fail("image-space refraction needs the inward distances (set_inward_distances)");
+        image_space_.trace(*mesh_, vertex_normals_, camera, materials_buffer_, material_count_,
+                           samples_.buffer, dielectric_pixels_, e, *paths);
+        st.refraction_bytes = image_space_.device_bytes();
+        break;
+      case RefractionMethod::kDistanceMaps:
+        distance_maps_.trace(*mesh_, vertex_normals_, camera, materials_buffer_, material_count_,
+                             options.refraction, samples_.buffer, dielectric_pixels_, e, *paths);
+        st.refraction_bytes = distance_maps_.device_bytes();
+        break;
+      case RefractionMethod::kNone:
+      case RefractionMethod::kReference:
+      case RefractionMethod::kReferenceFull:
+        break;  // no device refraction: excluded above
     }
-    case RefractionMethod::kVoxelMulti:
-    case RefractionMethod::kVoxelTwo: {
-      cl::Buffer& e = ends_.ensure(cl_, pixels * sizeof(SurfaceSample), "refraction ends");
-      voxel_refraction_.build(options.refraction);
-      voxel_refraction_.trace(camera, samples_.buffer, materials_buffer_, material_count_, options.refraction,
-                              e, paths);
-      st.refraction_grid = voxel_refraction_.grid().spec;
-      st.refraction_bytes = voxel_refraction_.grid().device_bytes();
-      ends = &e;
-      break;
-    }
-    case RefractionMethod::kImageSpace: {
-      if (!inward_distances_set_)
-        fail("image-space refraction needs the inward distances (set_inward_distances)");
-      cl::Buffer& e = ends_.ensure(cl_, pixels * sizeof(SurfaceSample), "refraction ends");
-      image_space_.trace(*mesh_, vertex_normals_, camera, materials_buffer_, material_count_, samples_.buffer,
-                         e, paths);
-      st.refraction_bytes = image_space_.device_bytes();
-      ends = &e;
-      break;
-    }
-    case RefractionMethod::kDistanceMaps: {
-      cl::Buffer& e = ends_.ensure(cl_, pixels * sizeof(SurfaceSample), "refraction ends");
-      distance_maps_.trace(*mesh_, vertex_normals_, camera, materials_buffer_, material_count_,
-                           options.refraction, samples_.buffer, e, paths);
-      st.refraction_bytes = distance_maps_.device_bytes();
-      ends = &e;
-      break;
-    }
-    case RefractionMethod::kReference:
-    case RefractionMethod::kReferenceFull:
-      fail("the {} refraction renders on the host (render_refraction_reference), not in a device frame",
-           refraction_method_info(options.refraction.method).name);
+    ends = &e;
   }
 
   RenderedFrame frame;
@@ -214,13 +223,21 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
   }
 
   cl::Buffer& image = image_.ensure(cl_, pixels * 16, "image");
-  cl::Kernel shade = cl_.kernel("shade.cl", "shade");
   if (!environment_given_)  // the light's ambient colour, which may change from frame to frame
     upload_environment(
         EnvironmentMap::constant(glm::vec3(light.ambient[0], light.ambient[1], light.ambient[2])));
-  cl_.launch("shade", shade, pixels, kGroup, *ends, transmittance, paths, cl_uint(pixels), materials_buffer_,
-             cl_uint(material_count_), light, environment_, cl_uint(environment_size_.x),
-             cl_uint(environment_size_.y), image);
+  const RenderCamera render_camera = make_render_camera(camera);
+  if (refracts) {
+    cl::Kernel shade = cl_.kernel("shade.cl", "shade");
+    cl_.launch("shade", shade, pixels, kGroup, render_camera, samples_.buffer, *ends, *paths, transmittance,
+               materials_buffer_, cl_uint(material_count_), light, environment_, cl_uint(environment_size_.x),
+               cl_uint(environment_size_.y), image);
+  } else {
+    cl::Kernel shade = cl_.kernel("shade.cl", "shade_primary");
+    cl_.launch("shade", shade, pixels, kGroup, render_camera, samples_.buffer, transmittance,
+               materials_buffer_, cl_uint(material_count_), light, environment_, cl_uint(environment_size_.x),
+               cl_uint(environment_size_.y), image);
+  }
   frame.image = ImageRgba(camera.width, camera.height);
   cl_.download(image, frame.image.pixels.data(), pixels * 16, "download image");
   if (options.keep_samples) {
@@ -229,7 +246,7 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
       cl_.download(*ends, frame.samples.data(), pixels * sizeof(SurfaceSample), "download samples");
     }
     frame.paths.resize(pixels);
-    cl_.download(paths, frame.paths.data(), pixels * sizeof(RefractionPath), "download paths");
+    cl_.download(*paths, frame.paths.data(), pixels * sizeof(RefractionPath), "download paths");
     std::vector<glm::vec4> t4(pixels);
     cl_.download(transmittance, t4.data(), pixels * 16, "download transmittance");
     cl_.finish("rendering a frame");

@@ -20,6 +20,7 @@
 #include "core/material.h"
 #include "core/triangle_soup.h"
 #include "render/camera_frame.h"
+#include "render/dielectric_pixels.h"
 #include "render/distance_map_refraction.h"
 #include "render/environment_map.h"
 #include "render/image_rgba.h"
@@ -103,6 +104,7 @@ class FrameRenderer {
   VoxelRefraction voxel_refraction_;
   ImageSpaceRefraction image_space_;
   DistanceMapRefraction distance_maps_;
+  DielectricPixels dielectric_pixels_;
   const TriangleSoup* soup_ = nullptr;
   std::vector<Material> materials_;
   uint32_t material_count_ = 0;
@@ -113,6 +115,7 @@ class FrameRenderer {
   glm::uvec2 environment_size_{0, 0};
   bool environment_given_ = false;
   bool inward_distances_set_ = false;
+  bool scene_has_dielectric_ = false;  // a triangle of the scene is a dielectric: refraction has work
 
   void upload_environment(const EnvironmentMap& environment);
 };

@@ -30,7 +30,8 @@ void ImageSpaceRefraction::set_inward_distances(const std::vector<float>& d_n) {
 void ImageSpaceRefraction::trace(const DeviceMesh& mesh, const cl::Buffer& vertex_normals,
                                  const CameraFrame& camera, const cl::Buffer& materials,
                                  uint32_t material_count, const cl::Buffer& primary_samples,
-                                 cl::Buffer& end_samples, cl::Buffer& paths) {
+                                 const DielectricPixels& dielectric, cl::Buffer& end_samples,
+                                 cl::Buffer& paths) {
   VOXR_CHECK(material_count > 0);
   // The dielectrics' back faces, nearest kept: d_V and the exit normals.
   RasterTarget back = camera_target(camera);
@@ -52,10 +53,10 @@ void ImageSpaceRefraction::trace(const DeviceMesh& mesh, const cl::Buffer& verte
   const float size = glm::length(mesh.bounds().size());
   p.scene_size = size > 0.0f ? size : 1.0f;
   cl::Kernel kernel = cl_.kernel("image_space.cl", "image_space");
-  const uint64_t pixels = uint64_t(camera.width) * camera.height;
-  cl_.launch("refraction", kernel, pixels, kGroup, make_render_camera(camera), primary_samples,
-             back_samples_.buffer, opaque_samples_.buffer, materials, cl_uint(material_count),
-             mesh.triangles(), inward, p, end_samples, paths);
+  VOXR_CHECK_EQ(uint64_t(dielectric.pixel_count()), uint64_t(camera.width) * camera.height);
+  cl_.launch("refraction", kernel, dielectric.pixel_count(), kGroup, make_render_camera(camera),
+             primary_samples, dielectric, back_samples_.buffer, opaque_samples_.buffer, materials,
+             cl_uint(material_count), mesh.triangles(), inward, p, end_samples, paths);
 }
 
 }  // namespace voxr

@@ -30,6 +30,7 @@
 #include "cl/cl_runtime.h"
 #include "cl/scratch_buffers.h"
 #include "render/camera_frame.h"
+#include "render/dielectric_pixels.h"
 #include "render/visibility_rasterizer.h"
 #include "voxelize/device_mesh.h"
 
@@ -45,13 +46,13 @@ class ImageSpaceRefraction {
   // d_N per vertex of the scene's mesh (inward_distances), uploaded once per scene.
   void set_inward_distances(const std::vector<float>& d_n);
 
-  // For every pixel of `camera` (width * height): its end SurfaceSample and RefractionPath, from the primary
-  // samples (primary_samples, resolved from the camera's full visibility buffer). Pixels that see no
-  // dielectric get the identity path (voxr_layout.h) and their primary sample as the end. `mesh` and
-  // `vertex_normals` as FrameRenderer has them; materials: material_count RenderMaterial.
+  // For every pixel of `camera` that `dielectric` lists (found from `primary_samples`, resolved from the
+  // camera's full visibility buffer): its end SurfaceSample and RefractionPath (voxr_layout.h), written at
+  // the pixel's index of `end_samples` and `paths` (nothing else is written). `mesh` and `vertex_normals` as
+  // FrameRenderer has them; materials: material_count RenderMaterial.
   void trace(const DeviceMesh& mesh, const cl::Buffer& vertex_normals, const CameraFrame& camera,
              const cl::Buffer& materials, uint32_t material_count, const cl::Buffer& primary_samples,
-             cl::Buffer& end_samples, cl::Buffer& paths);
+             const DielectricPixels& dielectric, cl::Buffer& end_samples, cl::Buffer& paths);
 
   // Device memory of d_N and the back-face and opaque buffers (as allocated, after a trace).
   uint64_t device_bytes() const {

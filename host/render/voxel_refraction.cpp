@@ -81,14 +81,15 @@ VoxelRefractParams VoxelRefraction::params(const RefractionOptions& options) con
 }
 
 void VoxelRefraction::trace(const CameraFrame& camera, const cl::Buffer& primary_samples,
-                            const cl::Buffer& materials, uint32_t material_count,
-                            const RefractionOptions& options, cl::Buffer& end_samples, cl::Buffer& paths) {
+                            const DielectricPixels& dielectric, const cl::Buffer& materials,
+                            uint32_t material_count, const RefractionOptions& options,
+                            cl::Buffer& end_samples, cl::Buffer& paths) {
   VOXR_CHECK(material_count > 0);
   cl::Kernel kernel = cl_.kernel("refract_voxel.cl", "refract_voxel", channel_defines());
-  const uint64_t pixels = uint64_t(camera.width) * camera.height;
-  cl_.launch("refraction", kernel, pixels, kGroup, grid_.view_args(cl_), make_render_camera(camera),
-             primary_samples, materials, cl_uint(material_count), params(options), bricks_.buffer,
-             end_samples, paths);
+  VOXR_CHECK_EQ(uint64_t(dielectric.pixel_count()), uint64_t(camera.width) * camera.height);
+  cl_.launch("refraction", kernel, dielectric.pixel_count(), kGroup, grid_.view_args(cl_),
+             make_render_camera(camera), primary_samples, dielectric, materials, cl_uint(material_count),
+             params(options), bricks_.buffer, end_samples, paths);
 }
 
 }  // namespace voxr

@@ -25,6 +25,7 @@
 #include "core/triangle_soup.h"
 #include "grid/device_voxel_grid.h"
 #include "render/camera_frame.h"
+#include "render/dielectric_pixels.h"
 #include "render/refraction_method.h"
 #include "voxelize/device_mesh.h"
 #include "voxelize/voxelizer.h"
@@ -47,12 +48,12 @@ class VoxelRefraction {
   // sum, material), on the device. Throws voxr::Error when no scene was set or the grid does not fit.
   void build(const RefractionOptions& options);
 
-  // Per pixel of `camera`: its end SurfaceSample and RefractionPath (voxr_layout.h) from the primary
-  // samples; materials: material_count RenderMaterial. Pixels that see no dielectric get the identity path
-  // and their primary sample.
-  void trace(const CameraFrame& camera, const cl::Buffer& primary_samples, const cl::Buffer& materials,
-             uint32_t material_count, const RefractionOptions& options, cl::Buffer& end_samples,
-             cl::Buffer& paths);
+  // Per pixel of `camera` that `dielectric` lists (found from `primary_samples`): its end SurfaceSample and
+  // RefractionPath (voxr_layout.h), written at the pixel's index of `end_samples` and `paths` (nothing else
+  // is written); materials: material_count RenderMaterial.
+  void trace(const CameraFrame& camera, const cl::Buffer& primary_samples, const DielectricPixels& dielectric,
+             const cl::Buffer& materials, uint32_t material_count, const RefractionOptions& options,
+             cl::Buffer& end_samples, cl::Buffer& paths);
 
   const DeviceVoxelGrid& grid() const { return grid_; }
 
