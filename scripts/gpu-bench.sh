@@ -30,7 +30,7 @@ Runs voxr's benchmark matrix and writes CSV/Markdown per stage, each command's l
                    Runs no benchmark and touches no device.
   --bundle [DIR]   (Debian side) build a small Release tree (build-gpu: no viewer, tests, OpenVDB) and
                    pack voxr, voxr-render, the shared libraries they need (not libc, libstdc++ or the
-                   OpenCL loader; stubs for image-format libraries voxr never uses), the benchmark
+                   OpenCL loader), the benchmark
                    meshes and gpu-env.sh into DIR/voxr-bundle.tar.gz (DIR default .dev, git-ignored);
                    carry DIR to the GPU machine
   --from BUILD     with --bundle: take the programs from an already built tree instead
@@ -146,66 +146,7 @@ EOF
 
 bundle_meshes=(bunny.obj armadillo.off refined_elephant.off mech-holes-shark.off)
 
-# Libraries OpenImageIO links for image formats and colour management that voxr never reads or writes
-# (voxr writes PNG and EXR, reads PNG/EXR/HDR environments), and ICU's data (libxml2's, for DICOM). Not
-# DCMTK: OpenImageIO calls into it while it loads. Each is replaced by a stub: a library of
-# the same name that exports the same symbols (with their versions), each a trap, so the dynamic loader
-# is satisfied and nothing else they pull in (ffmpeg's codecs, GDAL, OpenVDB, ...) has to travel. With
-# them the bundle was 410 MB; the device tool carries at most 64 MiB.
-bundle_stubs='^lib(opencv_[a-z]*|avcodec|avformat|avutil|swscale|openvdb|OpenColorIO|icudata)\.so'
 bundle_skip='^(linux-vdso|libc\.so|libm\.so|libstdc\+\+|libgcc_s|ld-linux|libpthread|libdl\.so|librt\.so|libOpenCL\.so)'
-
-# make_stub REAL_LIBRARY SONAME OUT_SO: a library exporting REAL_LIBRARY's defined dynamic symbols.
-make_stub() {
-  local work
-  work=$(mktemp -d) || return 1
-  readelf --dyn-syms -W "$1" | awk -v asm="$work/stub.s" -v vers="$work/vers" -v soname="$2" '
-    function number(t,   i, v) {
-      if (t !~ /^0x/) return t + 0
-      v = 0
-      for (i = 3; i <= length(t); i++) v = v * 16 + index("0123456789abcdef", tolower(substr(t, i, 1))) - 1
-      return v
-    }
-    $1 ~ /^[0-9]+:$/ && $7 != "UND" && $7 != "ABS" && ($5 == "GLOBAL" || $5 == "WEAK") {
-      name = $8; ver = ""
-      if (index(name, "@@")) { ver = substr(name, index(name, "@@") + 2); name = substr(name, 1, index(name, "@@") - 1) }
-      else if (index(name, "@")) next            # an older version of a symbol: not needed here
-      if (name in seen) next
-      seen[name] = 1
-      size = number($3)
-      if (size < 1) size = 1
-      q = "\"" name "\""
-      if ($4 == "OBJECT") printf ".bss\n.globl %s\n.type %s, @object\n.size %s, %d\n%s: .zero %d\n", q, q, q, size, q, size > asm
-      else if ($4 == "TLS") printf ".section .tbss,\"awT\",@nobits\n.globl %s\n.type %s, @tls_object\n.size %s, %d\n%s: .zero %d\n", q, q, q, size, q, size > asm
-      else printf ".text\n.globl %s\n.type %s, @function\n%s: jmp .Ltrap\n", q, q, q > asm
-      print (ver == "" ? "-" : ver) "\t" q > vers
-    }
-    END {
-      # a call says which library it reached, then traps
-      msg = "voxr bundle: a function of the stub " soname " was called"
-      printf ".section .rodata\n.Lmsg: .ascii \"%s\\n\"\n", msg > asm
-      printf ".text\n.Ltrap: lea .Lmsg(%%rip), %%rsi\nmov $%d, %%edx\nmov $2, %%edi\nmov $1, %%eax\nsyscall\nud2\n", length(msg) + 1 > asm
-      printf ".section .note.GNU-stack,\"\",@progbits\n" > asm
-    }
-  ' || { rm -rf "$work"; return 1; }
-  # The version script: each version's symbols (unversioned ones, listed first as "-", go with the first).
-  LC_ALL=C sort -s -t$'\t' -k1,1 "$work/vers" | awk -F'\t' '
-    $1 == "-" { plain[++np] = $2; next }
-    $1 != cur {
-      if (cur != "") print "};"
-      cur = $1; printf "%s {\nglobal:\n", cur
-      for (i = 1; i <= np; i++) print plain[i] ";"
-      np = 0
-    }
-    { print $2 ";" }
-    END { if (cur != "") print "};" }' >"$work/stub.map"
-  local map=()
-  [ -s "$work/stub.map" ] && map=("-Wl,--version-script=$work/stub.map")
-  gcc -shared -nostdlib -Wl,-soname,"$2" -Wl,-z,noexecstack -o "$3" "$work/stub.s" "${map[@]}"
-  local rc=$?
-  rm -rf "$work"
-  return $rc
-}
 
 do_bundle() {
   local build=$from
@@ -230,13 +171,12 @@ do_bundle() {
   stage=$(mktemp -d "${TMPDIR:-/tmp}/voxr-bundle.XXXXXX") || exit 1
   local b=$stage/voxr-bundle
   mkdir -p "$b/lib" "$b/lib-loader" "$b/meshes"
-  # Every library the programs need, found through the dependencies of the libraries kept: a stubbed
-  # library's own dependencies are not followed.
+  # Every library the programs need, through the dependencies of each library kept.
   declare -A where=() done_lib=()
   local name path
   while read -r name path; do where[$name]=$path; done < <(ldd "$build/voxr" "$build/voxr-render" |
     awk '$2 == "=>" && $3 ~ /^\// {print $1, $3}')
-  local queue=() stubs=0 n
+  local queue=() n
   for exe in voxr voxr-render; do
     cp -L "$build/$exe" "$b/"
     mapfile -t -O "${#queue[@]}" queue < <(readelf -d "$build/$exe" | awk '/NEEDED/ {gsub(/[][]/, "", $5); print $5}')
@@ -247,13 +187,8 @@ do_bundle() {
     [[ -z ${done_lib[$n]:-} && ! $n =~ $bundle_skip ]] || continue
     done_lib[$n]=1
     [ -n "${where[$n]:-}" ] || { echo "gpu-bench: ldd does not resolve $n" >&2; exit 1; }
-    if [[ $n =~ $bundle_stubs ]]; then
-      make_stub "${where[$n]}" "$n" "$b/lib/$n" || { echo "gpu-bench: could not make the stub of $n" >&2; exit 1; }
-      stubs=$((stubs + 1))
-    else
-      cp -L "${where[$n]}" "$b/lib/$n" || exit 1
-      mapfile -t -O "${#queue[@]}" queue < <(readelf -d "${where[$n]}" | awk '/NEEDED/ {gsub(/[][]/, "", $5); print $5}')
-    fi
+    cp -L "${where[$n]}" "$b/lib/$n" || exit 1
+    mapfile -t -O "${#queue[@]}" queue < <(readelf -d "${where[$n]}" | awk '/NEEDED/ {gsub(/[][]/, "", $5); print $5}')
   done
   # The OpenCL loader stays the machine's; one travels in lib-loader/ for a machine that has none.
   cp -L "${where[libOpenCL.so.1]}" "$b/lib-loader/" || exit 1
@@ -274,7 +209,7 @@ do_bundle() {
     echo "bundled: $(date -u '+%Y-%m-%d %H:%M:%S UTC') on $(uname -n) ($(. /etc/os-release 2>/dev/null && echo "$PRETTY_NAME"))"
     echo "commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(git diff --quiet HEAD 2>/dev/null || echo ' (with uncommitted changes)')"
     echo "from: $build"
-    echo "libraries: $(find "$b/lib" -type f | wc -l), of which $stubs stubs"
+    echo "libraries: $(find "$b/lib" -type f | wc -l)"
     echo "command: $argv_text"
   } >"$b/BUNDLE.txt"
   mkdir -p "$bundle_dir" || exit 1
