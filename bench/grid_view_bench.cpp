@@ -2,7 +2,7 @@
 // sparse, one float3 per set voxel in rank order, reached through the rank index (one 8-byte load and a
 // popcount per read); the alternative is a dense float3 per voxel of the grid, addressed by the linear
 // index. The bunny at 256 is voxelized once with count + normal; the dense array is scattered from the
-// sparse one once on the device; then the same rays walk the whole grid (kernels/grid_view_bench.cl) and
+// sparse one once on the device; then the same rays walk the whole grid (kernels/test/grid_view_bench.cl) and
 // read the normal of every occupied voxel they meet, each way, plus a walk that reads no normal (the
 // baseline). Times are the kernels' profiling events (UseManualTime); counters give the memory of each
 // layout, the rays, the voxels visited and the normal reads.

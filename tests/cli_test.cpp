@@ -128,8 +128,8 @@ TEST(Cli, NoOpenClPlatformSaysHowToInstallPocl) {
 TEST(Cli, KernelBuildFailureShowsTheLog) {
   const fs::path dir = scratch() / "broken-kernels";
   fs::remove_all(dir);
-  fs::copy(fs::path(VOXR_SOURCE_DIR) / "kernels", dir);
-  std::ofstream(dir / "vox_setup.cl", std::ios::app) << "\nthis is not OpenC\n";
+  fs::copy(fs::path(VOXR_SOURCE_DIR) / "kernels", dir, fs::copy_options::recursive);
+  std::ofstream(dir / "voxelize" / "vox_setup.cl", std::ios::app) << "\nthis is not OpenC\n";
   const fs::path mesh = write_file("tetra6.obj", kTetra);
   const Result r =
       run_with_env("VOXR_KERNEL_DIR=" + dir.string() + " POCL_CACHE_DIR=" + (scratch() / "pocl").string(),

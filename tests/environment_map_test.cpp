@@ -1,6 +1,6 @@
-// Environment maps (render/environment_map.h, kernels/environment.h): the lat-long convention, bilinear
-// lookups, the procedural checker, images read through OpenImageIO (.exr, .hdr, .png) with one-line errors,
-// and the scene keys that choose them.
+// Environment maps (render/environment_map.h, kernels/common/environment.h): the lat-long convention,
+// bilinear lookups, the procedural checker, images read through OpenImageIO (.exr, .hdr, .png) with one-line
+// errors, and the scene keys that choose them.
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>

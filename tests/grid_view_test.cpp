@@ -1,6 +1,6 @@
-// kernels/grid_view.h, the device-side reader of a DeviceVoxelGrid: every accessor through a probe kernel
-// (kernels/grid_view_probe.cl) against the grid read back to the host, and the voxel traversal against an
-// independent double-precision DDA plus the properties any traversal must have.
+// kernels/common/grid_view.h, the device-side reader of a DeviceVoxelGrid: every accessor through a probe
+// kernel (kernels/test/grid_view_probe.cl) against the grid read back to the host, and the voxel traversal
+// against an independent double-precision DDA plus the properties any traversal must have.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // One layout, two readers: the device compiler must agree with the host on every struct of
-// kernels/voxr_layout.h (sizes and member offsets, the list VOXR_LAYOUT_ENTRIES).
+// kernels/common/voxr_layout.h (sizes and member offsets, the list VOXR_LAYOUT_ENTRIES).
 #include <gtest/gtest.h>
 
 #include <cstddef>

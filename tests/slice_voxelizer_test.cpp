@@ -67,7 +67,7 @@ TEST(SliceVoxelizer, BatchesGiveTheSameGrid) {
   VoxelizeOptions one;
   one.channels = all_channels();
   VoxelizeOptions many = one;
-  many.record_budget_bytes = 64 * sizeof(VoxCopy);
+  many.record_budget_bytes = 64 * sizeof(CopyRecord);
   VoxelizeStats stats;
   const VoxelGrid a = voxelizer.run(soup, grid, one);
   const VoxelGrid b = voxelizer.run(soup, grid, many, &stats);

@@ -240,7 +240,7 @@ TEST(Slicemap, BatchesGiveTheSameSlicemap) {
   const GridSpec grid = test::fitted(soup, 40);
   for (SlicemapSlicing s : kBoth) {
     VoxelizeStats stats;
-    expect_exact(soup, grid, s, "batched", 64 * sizeof(SlicemapRecord), &stats);
+    expect_exact(soup, grid, s, "batched", 64 * sizeof(CopyRecord), &stats);
     EXPECT_GT(stats.batches, 3u);
   }
 }

@@ -75,6 +75,20 @@ cl::Buffer upload_materials(ClRuntime& cl, const std::vector<RenderMaterial>& ma
   return b;
 }
 
+// Coverage counts (checks of the tie rule) through the test kernel kernels/test/raster_count.cl: 2 * width *
+// height uint, per pixel the front then the back primitives (VOXR_PRIM_BACK) that cover its centre.
+void count_coverage(ClRuntime& cl, VisibilityRasterizer& raster, RasterBins& bins, GrowingBuffer& counts) {
+  const uint32_t width = bins.width(), height = bins.height();
+  const uint64_t bytes = uint64_t(width) * height * 2 * sizeof(cl_uint);
+  cl::Buffer& out = counts.ensure(cl, bytes, "coverage counts");
+  cl.fill_zero(out, bytes, "clear");
+  cl::Kernel count = cl.kernel("raster_count.cl", "raster_count", {{"WG_SIZE", "256"}});
+  raster.for_each_batch(bins, [&](const cl::Buffer& records, uint32_t n) {
+    cl.launch("raster_count", count, n, 256, cl_uint(width), cl_uint(height), bins.prims(), records,
+              cl_uint(n), out);
+  });
+}
+
 struct DeviceRaster {
   std::vector<uint64_t> words;
   std::vector<uint32_t> counts;  // 2 per pixel (front, back), when asked
@@ -103,7 +117,7 @@ DeviceRaster run_device(const TriangleSoup& soup, const RasterTarget& target,
     RasterBins bins;
     raster.bin(mesh, target, mat_buffer, uint32_t(mats.size()), bins);
     GrowingBuffer count_buffer;
-    raster.count_coverage(bins, count_buffer);
+    count_coverage(cl, raster, bins, count_buffer);
     out.counts.resize(pixels * 2);
     cl.download(count_buffer.buffer, out.counts.data(), pixels * 8, "readback counts");
   }
@@ -367,7 +381,7 @@ TEST(Visibility, HugeTriangleSplitsIntoManyWorkItems) {
   EXPECT_EQ(dev.stats.records, uint64_t(128) * 128) << "one record (work item) per 8x8 tile";
   EXPECT_EQ(dev.stats.batches, 1u);
   // A record budget of 1000 records: 17 batches, the same words.
-  const DeviceRaster batched = run_device(soup, target, kOpaque5, false, 1000 * sizeof(RasterRecord));
+  const DeviceRaster batched = run_device(soup, target, kOpaque5, false, 1000 * sizeof(CopyRecord));
   EXPECT_EQ(batched.stats.batches, 17u);
   EXPECT_EQ(batched.stats.records, dev.stats.records);
   EXPECT_TRUE(batched.words == dev.words);
@@ -377,7 +391,7 @@ TEST(Visibility, BatchedRandomSoupEqualsSingleBatch) {
   const TriangleSoup soup = test::random_soup(7, 300, -1.0f, 1.0f, 0.8f);
   const RasterTarget target = camera_target(look_at(glm::vec3(0, 0, 3), glm::vec3(0), 120, 100));
   const DeviceRaster one = run_device(soup, target, kOpaque5);
-  const DeviceRaster many = run_device(soup, target, kOpaque5, false, 97 * sizeof(RasterRecord));
+  const DeviceRaster many = run_device(soup, target, kOpaque5, false, 97 * sizeof(CopyRecord));
   EXPECT_GT(many.stats.batches, 10u);
   EXPECT_EQ(compare_words(one.words, many.words, target.width), "");
 }

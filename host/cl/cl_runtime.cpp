@@ -1,6 +1,7 @@
 #include "cl/cl_runtime.h"
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <set>
@@ -24,15 +25,20 @@ ClRuntime::ClRuntime(const DeviceInfo& device) : device_(device) {
 
 std::string ClRuntime::load_source(const std::string& file) const {
   if (const char* dir = std::getenv("VOXR_KERNEL_DIR"); dir && *dir) {
-    const std::string path = std::string(dir) + "/" + file;
-    std::ifstream in(path);
-    if (!in) fail("VOXR_KERNEL_DIR: cannot read kernel source {}", path);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
+    // Kernels are named by file name alone: search the stage folders for it.
+    std::error_code ec;
+    for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
+         !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+      if (it->path().filename() != file) continue;
+      std::ifstream in(it->path());
+      if (!in) fail("VOXR_KERNEL_DIR: cannot read kernel source {}", it->path().string());
+      std::stringstream ss;
+      ss << in.rdbuf();
+      return ss.str();
+    }
+    fail("VOXR_KERNEL_DIR: no kernel source named {} under {}", file, dir);
   }
-  for (const EmbeddedKernel& k : embedded_kernels())
-    if (k.name == file) return std::string(k.source);
+  if (const EmbeddedKernel* k = find_embedded_kernel(file)) return std::string(k->source);
   throw InternalError("no embedded kernel source named " + file);
 }
 

@@ -1,5 +1,5 @@
 // The pixels a refraction method traces: those whose primary sample is a dielectric surface
-// (kernels/dielectric_pixels.cl). One kernel lists their indices on the device — the count stays there, no
+// (kernels/render/refraction/dielectric_pixels.cl). One kernel lists their indices on the device — the count stays there, no
 // host synchronisation reads it — and writes every other pixel's path end (its primary sample), so the
 // refraction kernels run over the list and write the listed pixels' ends and paths only. A refraction
 // kernel launched with pixel_count() work items (its global size) takes the list as two parameters

@@ -172,8 +172,6 @@ uint32_t reference_raster_prim(const TriangleSoup& soup, uint32_t t, const Raste
     prim.x[i] = int32_t(v[i].x);
     prim.y[i] = int32_t(v[i].y);
   }
-  prim.first_tile = tx0 | (ty0 << 16);
-  prim.tiles_x = tiles_x;
   prim.depth[0] = depth0;
   prim.depth[1] = depth1;
   prim.depth[2] = depth2;

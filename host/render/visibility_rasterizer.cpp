@@ -6,8 +6,6 @@
 #include <cstring>
 #include <utility>
 
-#include "cl/scan.h"
-
 namespace voxr {
 
 namespace {
@@ -71,8 +69,8 @@ VisibilityRasterizer::VisibilityRasterizer(ClRuntime& cl, uint64_t record_budget
 }
 
 std::vector<ProgramSpec> VisibilityRasterizer::programs() const {
-  std::vector<ProgramSpec> specs = scan_programs();
-  for (const char* file : {"raster_setup.cl", "raster_expand.cl", "raster_depth.cl", "raster_resolve.cl"})
+  std::vector<ProgramSpec> specs = RecordBins::programs();
+  for (const char* file : {"raster_setup.cl", "raster_depth.cl", "raster_resolve.cl"})
     specs.push_back({file, raster_defines()});
   return specs;
 }
@@ -81,37 +79,18 @@ void VisibilityRasterizer::bin(const DeviceMesh& mesh, const RasterTarget& targe
                                const cl::Buffer& materials, uint32_t material_count, RasterBins& bins) {
   const uint32_t tris = mesh.triangle_count();
   bins.params_ = make_raster_params(target, tris, material_count);
-  bins.records_ = 0;
-  bins.batch_ = 0;
-  bins.expanded_ = false;
   cl::Buffer& prims = bins.prims_.ensure(cl_, uint64_t(tris) * sizeof(RasterPrim), "raster primitives");
-  cl::Buffer& counts = bins.counts_.ensure(cl_, uint64_t(tris) * 4, "raster tile counts");
-  cl::Buffer& offsets = bins.offsets_.ensure(cl_, uint64_t(tris) * 8, "raster tile offsets");
+  bins.tiles_.prepare(cl_, tris);
   if (tris == 0) return;
   cl::Kernel setup = cl_.kernel("raster_setup.cl", "raster_setup", raster_defines());
   cl_.launch(stage("raster_setup"), setup, tris, kGroup, bins.params_, mesh.positions(), mesh.triangles(),
-             materials, prims, counts);
-  bins.records_ = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, tris, stage("raster_scan"));
-  const uint64_t budget = std::max<uint64_t>(1, record_budget_bytes_ / sizeof(RasterRecord));
-  bins.batch_ = std::min({bins.records_, budget, uint64_t(0xffffffffu)});
+             materials, prims, bins.tiles_.counts(), bins.tiles_.boxes());
+  bins.tiles_.scan(cl_, record_budget_bytes_, stage("raster_scan"));
 }
 
 void VisibilityRasterizer::for_each_batch(RasterBins& bins,
                                           const std::function<void(const cl::Buffer&, uint32_t)>& consume) {
-  if (bins.records_ == 0) return;
-  const uint64_t batch = bins.batch_;
-  cl::Buffer& records = bins.record_buffer_.ensure(cl_, batch * sizeof(RasterRecord), "raster records");
-  const bool single = bins.batches() == 1;
-  for (uint64_t begin = 0; begin < bins.records_; begin += batch) {
-    const uint32_t count = uint32_t(std::min(batch, bins.records_ - begin));
-    if (!(single && bins.expanded_)) {
-      cl::Kernel expand = cl_.kernel("raster_expand.cl", "raster_expand", raster_defines());
-      cl_.launch(stage("raster_expand"), expand, count, kGroup, cl_uint(bins.params_.triangle_count),
-                 bins.offsets_.buffer, bins.prims_.buffer, cl_ulong(begin), cl_uint(count), records);
-      bins.expanded_ = single;
-    }
-    consume(records, count);
-  }
+  bins.tiles_.for_each_batch(cl_, stage("raster_expand"), consume);
 }
 
 void VisibilityRasterizer::rasterize_depth(RasterBins& bins, GrowingBuffer& visibility) {
@@ -162,18 +141,6 @@ void VisibilityRasterizer::rasterize(const DeviceMesh& mesh, const RasterTarget&
     stats->kernels_ms = split.kernels_ms;
     stats->stage_ms = split.stage_ms;
   }
-}
-
-void VisibilityRasterizer::count_coverage(RasterBins& bins, GrowingBuffer& counts) {
-  const uint32_t width = bins.width(), height = bins.height();
-  const uint64_t bytes = uint64_t(width) * height * 2 * sizeof(cl_uint);
-  cl::Buffer& out = counts.ensure(cl_, bytes, "coverage counts");
-  cl_.fill_zero(out, bytes, "clear");
-  cl::Kernel count = cl_.kernel("raster_count.cl", "raster_count", raster_defines());
-  for_each_batch(bins, [&](const cl::Buffer& records, uint32_t n) {
-    cl_.launch(stage("raster_count"), count, n, kGroup, cl_uint(width), cl_uint(height), bins.prims(),
-               records, cl_uint(n), out);
-  });
 }
 
 void VisibilityRasterizer::resolve(const DeviceMesh& mesh, const cl::Buffer& vertex_normals,

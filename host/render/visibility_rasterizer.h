@@ -1,8 +1,9 @@
 // Camera (and light) visibility by a kernel rasterizer, no graphics API: triangles are binned into 8x8-pixel
-// tiles (kernels/raster_setup.cl counts each triangle's tiles, an exclusive scan places them,
-// raster_expand.cl writes one (triangle, tile) record per raster work item), and a consumer kernel runs once
-// per record over the pixel centres the triangle covers in its tile (kernels/raster_coverage.h). The depth
-// consumer builds the visibility buffer, one 64-bit word per pixel (voxr_layout.h: depth bits << 32 |
+// tiles (kernels/raster/raster_setup.cl counts each triangle's tiles, an exclusive scan places them,
+// util/expand_copies.cl writes one (triangle, tile) record per raster work item: cl/record_bins.h), and a
+// consumer kernel runs once
+// per record over the pixel centres the triangle covers in its tile (kernels/common/raster_coverage.h). The
+// depth consumer builds the visibility buffer, one 64-bit word per pixel (voxr_layout.h: depth bits << 32 |
 // triangle, 64-bit atomic min); raster_resolve.cl turns it into a SurfaceSample per pixel. Everything stays
 // on the device between binning, rasterizing and resolving; buffers are kept and reused frame to frame.
 #pragma once
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "cl/cl_runtime.h"
+#include "cl/record_bins.h"
 #include "cl/scratch_buffers.h"
 #include "render/camera_frame.h"
 #include "voxelize/device_mesh.h"
@@ -64,7 +66,7 @@ struct RasterStats {
 };
 
 // A mesh binned for one target, on the device: per triangle its clipped and snapped primitive
-// (voxr_layout.h RasterPrim) and tile count, their exclusive scan, and the records of the current batch.
+// (voxr_layout.h RasterPrim) and its tiles (RecordBins: counts, boxes, their scan, the current batch).
 // Keep one per target (camera, light) and bin into it every frame: its buffers are reused.
 class RasterBins {
  public:
@@ -72,18 +74,16 @@ class RasterBins {
   uint32_t width() const { return params_.width; }
   uint32_t height() const { return params_.height; }
   uint32_t triangle_count() const { return params_.triangle_count; }
-  uint64_t record_count() const { return records_; }  // all batches together
-  uint64_t batch_records() const { return batch_; }   // records per batch
-  uint64_t batches() const { return batch_ == 0 ? 0 : (records_ + batch_ - 1) / batch_; }
+  uint64_t record_count() const { return tiles_.records(); }  // all batches together
+  uint64_t batch_records() const { return tiles_.batch_records(); }
+  uint64_t batches() const { return tiles_.batches(); }
   const cl::Buffer& prims() const { return prims_.buffer; }  // RasterPrim per triangle
 
  private:
   friend class VisibilityRasterizer;
   RasterParams params_{};
-  uint64_t records_ = 0;
-  uint64_t batch_ = 0;
-  bool expanded_ = false;  // a single batch's records are in place (the next consumer skips the expand)
-  GrowingBuffer prims_, counts_, offsets_, record_buffer_;
+  GrowingBuffer prims_;
+  RecordBins tiles_;
 };
 
 class VisibilityRasterizer {
@@ -103,7 +103,7 @@ class VisibilityRasterizer {
   // Waits for the record total (the only readback).
   void bin(const DeviceMesh& mesh, const RasterTarget& target, const cl::Buffer& materials,
            uint32_t material_count, RasterBins& bins);
-  // Calls `consume(records, count)` once per batch of expanded records (RasterRecord, count <= 2^32-1): the
+  // Calls `consume(records, count)` once per batch of expanded records (CopyRecord: triangle, tile): the
   // way a kernel of its own (with raster_coverage.h) runs over the binned pixels.
   void for_each_batch(RasterBins& bins, const std::function<void(const cl::Buffer&, uint32_t)>& consume);
 
@@ -118,9 +118,6 @@ class VisibilityRasterizer {
   // bin() and rasterize_depth() with bins of its own.
   void rasterize(const DeviceMesh& mesh, const RasterTarget& target, const cl::Buffer& materials,
                  uint32_t material_count, GrowingBuffer& visibility, RasterStats* stats = nullptr);
-  // Coverage counts (checks of the tie rule): 2 * width * height uint, per pixel front then back primitives
-  // (VOXR_PRIM_BACK) that cover its centre.
-  void count_coverage(RasterBins& bins, GrowingBuffer& counts);
 
   // One SurfaceSample per pixel of `frame` (width * height, row 0 at the top) from the visibility buffer that
   // rasterize() made for camera_target(frame) and `mesh`; `vertex_normals` holds one float4 (xyz unit) per

@@ -1,5 +1,6 @@
 #include "voxelize/slice_voxelizer.h"
 
+#include "cl/record_bins.h"
 #include "cl/scan.h"
 #include "voxelize/grid_params.h"
 #include "voxelize/snapped_triangle.h"
@@ -42,7 +43,10 @@ std::vector<ProgramSpec> SliceVoxelizer::programs(const VoxelizeOptions& options
     if (hybrid) specs.push_back({"vox_direct.cl", p});
     specs.push_back({grid ? "vox_grid.cl" : "vox_raster.cl", p});
   }
-  if (!grid) specs.push_back({"vox_expand.cl", base});
+  if (!grid) {
+    const std::vector<ProgramSpec> expand = RecordBins::programs();
+    specs.insert(specs.end(), expand.begin(), expand.end());
+  }
   if (packed_sums(options.channels)) specs.push_back({"vox_finalize.cl", base});
   return specs;
 }
@@ -98,30 +102,24 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
   const VoxGridParams params =
       make_grid_params(grid, uint32_t(listed), margin, options.rows_per_copy, channels);
 
-  // Setup of the listed triangles: snapped records, and copy counts and offsets for the slice path.
+  // Setup of the listed triangles: snapped records, and copy counts and boxes for the slice path.
   cl::Buffer snapped = scratch("snapped triangles", listed * sizeof(VoxSnappedTriangle));
-  cl::Buffer counts = scratch("copy counts", listed * 4);
-  cl::Buffer info = scratch("copy info", listed * sizeof(VoxCopyInfo));
-  cl::Buffer offsets = scratch("copy offsets", listed * 8);
   cl::Buffer too_large = scratch("split check", 4);
-  uint64_t copies = 0;
+  copies_.prepare(cl_, listed);
   if (listed > 0) {
     cl_.fill_zero(too_large, 4, "clear");
     cl::Kernel setup =
         cl_.kernel("vox_setup.cl", "vox_setup", with(base, "VOX_SETUP_LIST", hybrid ? "1" : "0"));
     cl_.launch("setup", setup, listed, kGroup, params, mesh.positions(), mesh.triangles(), list, snapped,
-               counts, info, too_large);
-    if (!grid_method) copies = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, listed, "scan");
+               copies_.counts(), copies_.boxes(), too_large);
+    if (!grid_method) copies_.scan(cl_, options.record_budget_bytes, "scan");
     expect_no_oversized(cl_, too_large, "split check");
   }
+  const uint64_t copies = copies_.records();
 
-  const uint64_t batch =
-      std::max<uint64_t>(1, std::min(copies, options.record_budget_bytes / sizeof(VoxCopy)));
-  const uint64_t batches = copies == 0 ? 0 : (copies + batch - 1) / batch;
-  cl::Buffer records = scratch("copy records", batch * sizeof(VoxCopy));
-  // Rasterizes the listed triangles with one pass of the kernels: batches of expanded records (a single
-  // batch is expanded once and reused by the second pass), or for the Grid baseline one launch per slab.
-  bool expanded = false;
+  // Rasterizes the listed triangles with one pass of the kernels: batches of expanded copy records (a
+  // single batch is expanded once and reused by the second pass), or for the Grid baseline one launch per
+  // slab.
   auto raster_listed = [&](const char* name, int pass, const cl::Buffer& ranked, const cl::Buffer& acc,
                            const cl::Buffer& material) {
     const Defines p = with(base, "VOX_PASS", std::to_string(pass));
@@ -133,17 +131,11 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
                    material);
       return;
     }
-    cl::Kernel expand = cl_.kernel("vox_expand.cl", "vox_expand", base);
     cl::Kernel raster = cl_.kernel("vox_raster.cl", "vox_raster", p);
-    for (uint64_t b = 0; b < batches; ++b) {
-      const uint64_t begin = b * batch, end = std::min(copies, begin + batch);
-      if (batches > 1 || !expanded)
-        cl_.launch("expand", expand, listed, kGroup, cl_uint(listed), counts, offsets, info, cl_ulong(begin),
-                   cl_ulong(end), records);
-      expanded = true;
-      cl_.launch(name, raster, end - begin, kGroup, params, snapped, records, cl_uint(end - begin), occ,
-                 ranked, acc, material);
-    }
+    copies_.for_each_batch(cl_, "expand", [&](const cl::Buffer& records, uint32_t count) {
+      cl_.launch(name, raster, count, kGroup, params, snapped, records, cl_uint(count), occ, ranked, acc,
+                 material);
+    });
   };
   raster_listed("raster", 0, dummy, dummy, dummy);
 
@@ -186,9 +178,9 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
   stats.triangles = tris;
   stats.copies = copies;
   stats.work_items = grid_method ? listed * grid.dims.z : stats.direct_triangles + copies;
-  stats.batches = batches;
+  stats.batches = copies_.batches();
   stats.margin = margin;
-  stats.device_bytes += scratch_bytes;
+  stats.device_bytes += scratch_bytes + copies_.device_bytes();
 }
 
 }  // namespace voxr

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <bit>
 
-#include "cl/scan.h"
+#include "cl/record_bins.h"
 #include "voxelize/grid_params.h"
 #include "voxr_layout.h"
 
@@ -12,8 +12,8 @@ namespace voxr {
 namespace {
 
 constexpr size_t kGroup = 256;
-// Tile of column centres one raster work item covers (kernels/slicemap_raster.cl); setup and raster must
-// agree, so the host passes both.
+// Tile of column centres one raster work item covers (kernels/voxelize/slicemap_raster.cl); setup and raster
+// must agree, so the host passes both.
 constexpr uint32_t kTileRows = 8;
 constexpr uint32_t kTileCols = 8;
 
@@ -52,9 +52,8 @@ uint64_t Slicemap::bits_set() const {
 std::vector<ProgramSpec> SlicemapVoxelizer::programs(const VoxelizeOptions& options) const {
   const bool local = options.slicing == SlicemapSlicing::kLocal;
   const Defines common = slicemap_defines(local);
-  std::vector<ProgramSpec> specs = scan_programs();
+  std::vector<ProgramSpec> specs = RecordBins::programs();
   specs.push_back({"slicemap_setup.cl", common});
-  specs.push_back({"slicemap_expand.cl", common});
   if (local) specs.push_back({"slicemap_raster.cl", with(common, "SLICEMAP_PASS", "0")});
   specs.push_back({"slicemap_raster.cl", with(common, "SLICEMAP_PASS", "1")});
   specs.push_back({"slicemap_voxels.cl", common});
@@ -87,34 +86,20 @@ void SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const 
       local ? alloc(columns * 8, "the column depth ranges") : alloc(4, "unused depth ranges");
   if (local) cl_.fill_zero(depth_range, columns * 8, "clear");
   cl::Buffer snapped = alloc(tris * sizeof(VoxSnappedTriangle), "snapped triangles");
-  cl::Buffer counts = alloc(tris * 4, "tile counts");
-  cl::Buffer info = alloc(tris * sizeof(SlicemapTiles), "tile info");
-  cl::Buffer offsets = alloc(tris * 8, "tile offsets");
   cl::Buffer too_large = alloc(4, "split check");
   cl_.fill_zero(too_large, 4, "clear");
+  tiles_.prepare(cl_, tris);
   cl::Kernel setup = cl_.kernel("slicemap_setup.cl", "slicemap_setup", common);
-  cl_.launch("setup", setup, tris, kGroup, params, mesh.positions(), mesh.triangles(), snapped, counts, info,
-             too_large);
-  const uint64_t records = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, tris, "scan");
+  cl_.launch("setup", setup, tris, kGroup, params, mesh.positions(), mesh.triangles(), snapped,
+             tiles_.counts(), tiles_.boxes(), too_large);
+  tiles_.scan(cl_, options.record_budget_bytes, "scan");
   expect_no_oversized(cl_, too_large, "split check");
 
-  // Records per batch: within the budget and within the raster kernel's 32-bit record count.
-  const uint64_t batch = std::max<uint64_t>(
-      1, std::min({records, options.record_budget_bytes / sizeof(SlicemapRecord), uint64_t(1) << 30}));
-  const uint64_t batches = records == 0 ? 0 : (records + batch - 1) / batch;
-  cl::Buffer record_buffer = alloc(batch * sizeof(SlicemapRecord), "raster records");
-  cl::Kernel expand = cl_.kernel("slicemap_expand.cl", "slicemap_expand", common);
-  bool expanded = false;
+  // Batches of tile records, expanded once when they fit one batch (the depth pass and the raster pass).
   auto raster_all = [&](const char* name, cl::Kernel& raster) {
-    for (uint64_t b = 0; b < batches; ++b) {
-      const uint64_t begin = b * batch, end = std::min(records, begin + batch);
-      if (batches > 1 || !expanded)
-        cl_.launch("expand", expand, tris, kGroup, cl_uint(tris), counts, offsets, info, cl_ulong(begin),
-                   cl_ulong(end), record_buffer);
-      expanded = true;
-      cl_.launch(name, raster, end - begin, kGroup, params, snapped, record_buffer, cl_uint(end - begin),
-                 depth_range, bits);
-    }
+    tiles_.for_each_batch(cl_, "expand", [&](const cl::Buffer& records, uint32_t count) {
+      cl_.launch(name, raster, count, kGroup, params, snapped, records, cl_uint(count), depth_range, bits);
+    });
   };
   if (local) {
     cl::Kernel depth =
@@ -129,10 +114,10 @@ void SlicemapVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const 
   cl_.launch("voxels", voxels, slicemap_words, kGroup, params, bits, depth_range, occ);
 
   stats.triangles = tris;
-  stats.copies = records;
-  stats.work_items = records;
-  stats.batches = batches;
-  stats.device_bytes += device_bytes;
+  stats.copies = tiles_.records();
+  stats.work_items = tiles_.records();
+  stats.batches = tiles_.batches();
+  stats.device_bytes += device_bytes + tiles_.device_bytes();
 }
 
 Slicemap SlicemapVoxelizer::read_slicemap() {

@@ -1,8 +1,8 @@
 // Eisemann & Decoret 2006, "Fast Scene Voxelization and Applications": the slicemap baseline. Binary
 // (occupancy only); every triangle is rasterized once in 2D and each fragment sets one bit of its column.
 //
-// Exact semantics (all integers on the snapped vertices of kernels/vox_triangle.h, S = VOXR_SUBVOXEL = 256,
-// B = dims.z, Z = B * S):
+// Exact semantics (all integers on the snapped vertices of kernels/common/vox_triangle.h, S = VOXR_SUBVOXEL =
+// 256, B = dims.z, Z = B * S):
 //   column (i, j)  one per i < dims.x, j < dims.y; its slicemap is B bits, ceil(B / 32) uint words.
 //   fragment       triangle t covers the column centre ((i + 1/2) S, (j + 1/2) S) of its projection on the
 //                  slicing plane under the top-left tie rule (exactly the centre mode of vox_scanline.h; a
@@ -22,14 +22,16 @@
 //                  the neighbour voxel of every bit that straddles a voxel face.
 //   Steep triangles leave holes (one fragment per column): that is the method's failure being measured.
 //
-// Stages: slicemap_setup (snap, count tiles of the projected bounding box) -> scan -> slicemap_expand (one
-// record per (triangle, tile)) -> [local: slicemap_raster depth pass, per column atomic near/far] ->
-// slicemap_raster bits pass (atomic_or one bit per fragment) -> slicemap_voxels (bits -> occupancy).
+// Stages: slicemap_setup (snap, count tiles of the projected bounding box) -> scan -> expand_copies (one
+// record per (triangle, tile); cl/record_bins.h) -> [local: slicemap_raster depth pass, per column atomic
+// near/far] -> slicemap_raster bits pass (atomic_or one bit per fragment) -> slicemap_voxels (bits ->
+// occupancy).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "cl/record_bins.h"
 #include "cl/scratch_buffers.h"
 #include "voxelize/slicemap_slicing.h"
 #include "voxelize/voxelizer.h"
@@ -72,6 +74,7 @@ class SlicemapVoxelizer final : public SurfaceVoxelizer {
  private:
   ClRuntime& cl_;
   ScratchBuffers scratch_;  // device buffers kept between runs
+  RecordBins tiles_;        // the (triangle, tile) raster records
   GridSpec last_grid_;
   SlicemapSlicing last_slicing_ = SlicemapSlicing::kUniform;
 };

@@ -3,12 +3,12 @@
 // one upload. Which method runs is decided here, in one table (kMethods) and one factory.
 //
 // Methods (the surface set; every method gives occ, the slice family also count, normal, material):
-//   hybrid    default: small triangles voxelized directly, one work item each (kernels/vox_direct.cl,
-//             Schwarz & Seidel 2010 §3's triangle-parallel pass); triangles whose cell range exceeds 8 per
-//             axis or 64 in all take the papers' slice duplication below. Same voxels as `slice`.
+//   hybrid    default: small triangles voxelized directly, one work item each (vox_direct.cl, Schwarz &
+//             Seidel 2010 §3's triangle-parallel pass); triangles whose cell range exceeds 8 per axis or 64
+//             in all take the papers' slice duplication below. Same voxels as `slice`.
 //   slice     Chang & Lai (TR 1688, PG 2011): every triangle duplicated once per slab and block of rows
-//             (vox_setup -> scan -> vox_expand, the geometry shader's duplication) and scanline-rasterized
-//             (vox_raster). Kept as the papers' method for Table 1.
+//             (vox_setup -> scan -> expand_copies, the geometry shader's duplication) and
+//             scanline-rasterized (vox_raster). Kept as the papers' method for Table 1.
 //   grid      Llamas 2007 ("Grid" in the papers' Table 1): one launch per slab over every triangle.
 //   slicemap  Eisemann & Decoret 2006: bit columns, centre sampling; occupancy only.
 // Rules (slice family): conservative (every voxel whose closed box meets the closed input triangle; boxes

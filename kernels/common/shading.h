@@ -1,4 +1,4 @@
-/* shading.h — the one shading model, read by the device (kernels/shade.cl) and the Embree reference
+/* shading.h — the one shading model, read by the device (kernels/render/shade.cl) and the Embree reference
  * (host/reference) alike, so their images differ only where shadows (later: refraction) differ. Written in
  * the C subset OpenCL C 1.2 and C++20 both accept, one colour channel at a time.
  *

@@ -2,11 +2,11 @@
  * by raster_setup.cl) covers, and its depth there. Every kernel that consumes the rasterizer's records
  * includes this and adds its own per-pixel action:
  *
- *   const RasterRecord rec = records[gid];
+ *   const CopyRecord rec = records[gid];
  *   __global const RasterPrim* prim = prims + rec.triangle;
- *   ulong mask = raster_tile_mask(prim, rec.tile, width, height);
+ *   ulong mask = raster_tile_mask(prim, rec.cell, width, height);
  *   uint x, y;
- *   while (raster_next_pixel(&mask, rec.tile, &x, &y)) { ... raster_depth_at(prim, x, y, width, height) ... }
+ *   while (raster_next_pixel(&mask, rec.cell, &x, &y)) { ... raster_depth_at(prim, x, y, width, height) ... }
  *
  * Coverage is exact: the pixel centre (x + 1/2, y + 1/2) against the polygon's edge functions in 64-bit
  * integers (snapped vertices, 1/VOXR_SUBPIXEL pixel), with the top-left rule for centres exactly on an edge

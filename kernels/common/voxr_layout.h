@@ -3,7 +3,7 @@
  * Written in the C subset that OpenCL C 1.2 and C++20 both accept: fixed-size scalar arrays, no vector
  * types, no padding surprises (every member is 4 bytes wide). host/cl/layout_checks.cpp static_asserts
  * the sizes, and tests/layout_test.cpp compares every entry of VOXR_LAYOUT_ENTRIES with the value a kernel
- * (kernels/layout_probe.cl) measures on the device. */
+ * (kernels/test/) measures on the device. */
 #ifndef VOXR_LAYOUT_H
 #define VOXR_LAYOUT_H
 
@@ -43,22 +43,29 @@ typedef struct VoxGridParams {
   uint channels; /* attribute pass: the ChannelSet bits to accumulate (host/grid/channel_table.h) */
 } VoxGridParams;
 
-/* One duplicated triangle: the "geometry shader" output. The slice (slab k) and the block of rows inside
- * the triangle's row range are packed so a record is 8 bytes. */
-typedef struct VoxCopy {
+/* Copy records, the duplication step the slice voxelizer (a triangle's slabs x blocks of rows), the slicemap
+ * voxelizer (its tiles of column centres) and the kernel rasterizer (its pixel tiles) share
+ * (util/expand_copies.cl, host/cl/record_bins.h). A setup kernel writes per triangle its copy count and a
+ * CopyBox: the copies are the cells of a box `width` cells across from cell `first`, row by row (count =
+ * width x rows). A cell packs a column in the low 16 bits and a row in the high 16. */
+#define VOXR_CELL(column, row) ((column) | ((row) << 16))
+#define VOXR_CELL_COLUMN(cell) ((cell) & 0xffffu)
+#define VOXR_CELL_ROW(cell) ((cell) >> 16)
+
+typedef struct CopyBox {
+  uint first; /* VOXR_CELL of the box's first cell */
+  uint width; /* cells per row */
+} CopyBox;
+
+/* One copy: a triangle and one cell of its box, one work item of the consumer kernel. The slice voxelizer's
+ * cell is (block of rows_per_copy rows, slab k), the slicemap's (column tile, row tile), the rasterizer's
+ * (tile column, tile row) of VOXR_RASTER_TILE pixels. */
+typedef struct CopyRecord {
   uint triangle;
-  uint slice_block; /* slice in the low 16 bits, row block in the high 16 */
-} VoxCopy;
+  uint cell;
+} CopyRecord;
 
-#define VOXR_COPY_SLICE(c) ((c).slice_block & 0xffffu)
-#define VOXR_COPY_BLOCK(c) ((c).slice_block >> 16)
 #define VOXR_MAX_BLOCKS 0xffffu
-
-/* A triangle's copies, from vox_setup.cl to vox_expand.cl: copies = slabs x row_blocks. */
-typedef struct VoxCopyInfo {
-  uint first_slab;
-  uint row_blocks;
-} VoxCopyInfo;
 
 /* A triangle in exact grid coordinates (vox_triangle.h), written by the setup stages and read by every
  * later stage instead of the mesh: vertex c is (x[c], y[c], z[c]) in 1/VOXR_SUBVOXEL voxel units. */
@@ -76,17 +83,6 @@ typedef struct VoxSnappedTriangle {
 #define VOXR_RANKED(rank, bits) (((ulong)(rank) << 32) | (ulong)(bits))
 #define VOXR_RANKED_RANK(w) ((uint)((w) >> 32))
 #define VOXR_RANKED_BITS(w) ((uint)(w))
-
-/* Slicemap (Eisemann & Decoret 2006) raster work: a triangle's tiles of column centres, and one tile. */
-typedef struct SlicemapTiles {
-  uint rows; /* tiles along y */
-  uint cols; /* tiles along x */
-} SlicemapTiles;
-
-typedef struct SlicemapRecord {
-  uint triangle;
-  uint tile; /* row tile in the high 16 bits, column tile in the low 16 */
-} SlicemapRecord;
 
 /* The row-padded bit layout of the solid stages (vox_solid_bits.h): word k * slice_words + j * words_x +
  * i / 32 holds voxel (i, j, k) at bit i % 32. */
@@ -107,7 +103,7 @@ typedef struct VoxGridView {
   uint pad;
 } VoxGridView;
 
-/* ---- Rendering (host/render, kernels/raster_*.cl, kernels/shadow_*.cl) ---- */
+/* ---- Rendering (host/render, kernels/raster, kernels/render) ---- */
 
 /* Material kinds as the kernels read them (core/material.h MaterialKind, same order). */
 #define VOXR_MATERIAL_OPAQUE 0
@@ -164,7 +160,7 @@ typedef struct SurfaceSample {
  * surface all the same (position, normal, material from the voxel). Only VOXR_NO_TRIANGLE means "nothing". */
 #define VOXR_VOXEL_HIT 0xfffffffeu
 
-/* ---- Refraction (host/render/refraction_method.h, kernels/refraction.h) ----
+/* ---- Refraction (host/render/refraction_method.h, kernels/common/refraction.h) ----
  * One record per pixel describing the path its camera ray took through dielectrics, written by every
  * refraction method (voxel, image-space, the Embree reference) and read by shade.cl:
  *   pixel = fresnel * environment(reflect_direction) + throughput * L(end)
@@ -252,7 +248,7 @@ typedef struct ShadowFrame {
   float voxel_size; /* orthographic: the voxel edge in world units */
 } ShadowFrame;
 
-/* ---- The kernel rasterizer (host/render/visibility_rasterizer.h, kernels/raster_*.cl) ---- */
+/* ---- The kernel rasterizer (host/render/visibility_rasterizer.h, kernels/raster) ---- */
 
 /* Screen positions are snapped to 1/VOXR_SUBPIXEL pixel; coverage is then decided by exact 64-bit integer
  * edge functions (raster_coverage.h), identical on every device and in the CPU reference. */
@@ -294,25 +290,16 @@ typedef struct RasterParams {
  * (x[i], y[i]) in 1/VOXR_SUBPIXEL pixel, image rows down, ordered so its signed area sum(x_i y_{i+1} -
  * x_{i+1} y_i) is positive; vertex_count 0 when it is not drawn (material kind, culled, clipped away, no
  * area, no pixel centre in its box). Its pixels' z_ndc is depth[0] (px - width/2) + depth[1] (py - height/2)
- * + depth[2] at pixel centre (px, py) in pixels. Its records (raster_expand.cl) are the tiles_x x tiles_y
- * tiles from tile (first_tile & 0xffff, first_tile >> 16): tile_counts[t] = tiles_x * tiles_y. */
+ * + depth[2] at pixel centre (px, py) in pixels. Its copies (CopyBox, written beside it) are the tiles of
+ * VOXR_RASTER_TILE x VOXR_RASTER_TILE pixels its box of pixel centres meets. */
 typedef struct RasterPrim {
   uint vertex_count;
   uint flags; /* VOXR_PRIM_* */
-  uint first_tile;
-  uint tiles_x;
   float depth[3];
   uint pad;
   int x[VOXR_RASTER_MAX_VERTICES];
   int y[VOXR_RASTER_MAX_VERTICES];
 } RasterPrim;
-
-/* One raster work item: a triangle and one tile of its bounding box (column in the low 16 bits, row in the
- * high 16). */
-typedef struct RasterRecord {
-  uint triangle;
-  uint tile;
-} RasterRecord;
 
 /* The visibility buffer holds one 64-bit word per pixel: (float bits of z_ndc in [0, 1]) << 32 | triangle,
  * so a 64-bit atomic min keeps the nearest triangle and, at equal depth, the lower id. A pixel no triangle
@@ -339,12 +326,10 @@ typedef struct RenderCamera {
   SIZE(VoxGridParams)                                                                                    \
   OFFSET(VoxGridParams, world_to_grid) OFFSET(VoxGridParams, dims) OFFSET(VoxGridParams, rows_per_copy)   \
   OFFSET(VoxGridParams, triangle_count) OFFSET(VoxGridParams, margin) OFFSET(VoxGridParams, channels)     \
-  SIZE(VoxCopy) OFFSET(VoxCopy, triangle) OFFSET(VoxCopy, slice_block)                                    \
-  SIZE(VoxCopyInfo) OFFSET(VoxCopyInfo, first_slab) OFFSET(VoxCopyInfo, row_blocks)                       \
+  SIZE(CopyBox) OFFSET(CopyBox, first) OFFSET(CopyBox, width)                                             \
+  SIZE(CopyRecord) OFFSET(CopyRecord, triangle) OFFSET(CopyRecord, cell)                                  \
   SIZE(VoxSnappedTriangle) OFFSET(VoxSnappedTriangle, x) OFFSET(VoxSnappedTriangle, y)                    \
   OFFSET(VoxSnappedTriangle, z) OFFSET(VoxSnappedTriangle, material)                                      \
-  SIZE(SlicemapTiles) OFFSET(SlicemapTiles, rows) OFFSET(SlicemapTiles, cols)                             \
-  SIZE(SlicemapRecord) OFFSET(SlicemapRecord, triangle) OFFSET(SlicemapRecord, tile)                      \
   SIZE(VoxSolidLayout) OFFSET(VoxSolidLayout, dims) OFFSET(VoxSolidLayout, words_x)                       \
   OFFSET(VoxSolidLayout, slice_words)                                                                     \
   SIZE(VoxGridView) OFFSET(VoxGridView, world_to_grid) OFFSET(VoxGridView, dims)                          \
@@ -376,9 +361,7 @@ typedef struct RenderCamera {
   OFFSET(RasterParams, height) OFFSET(RasterParams, kind_mask) OFFSET(RasterParams, triangle_count)       \
   OFFSET(RasterParams, material_count) OFFSET(RasterParams, guard) OFFSET(RasterParams, cull)             \
   SIZE(RasterPrim) OFFSET(RasterPrim, vertex_count) OFFSET(RasterPrim, flags)                             \
-  OFFSET(RasterPrim, first_tile) OFFSET(RasterPrim, tiles_x) OFFSET(RasterPrim, depth)                    \
-  OFFSET(RasterPrim, x) OFFSET(RasterPrim, y)                                                             \
-  SIZE(RasterRecord) OFFSET(RasterRecord, triangle) OFFSET(RasterRecord, tile)                            \
+  OFFSET(RasterPrim, depth) OFFSET(RasterPrim, x) OFFSET(RasterPrim, y)                                   \
   SIZE(RenderCamera) OFFSET(RenderCamera, eye) OFFSET(RenderCamera, width) OFFSET(RenderCamera, forward)   \
   OFFSET(RenderCamera, height) OFFSET(RenderCamera, right) OFFSET(RenderCamera, tan_half_fov_y)           \
   OFFSET(RenderCamera, up) OFFSET(RenderCamera, aspect)

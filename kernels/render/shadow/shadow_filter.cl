@@ -28,12 +28,12 @@ inline float light_distance(const ShadowFrame* f, uint x, uint y, float z_ndc) {
 
 __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_filter_accumulate(
     ShadowFrame frame, RenderLight light, __global const RasterPrim* prims,
-    __global const RasterRecord* records, uint record_count, __global const float4* positions,
+    __global const CopyRecord* records, uint record_count, __global const float4* positions,
     __global const uint4* triangles, __global const RenderMaterial* materials, uint material_count,
     __global int* tau) {
   const uint gid = get_global_id(0);
   if (gid >= record_count) return;
-  const RasterRecord rec = records[gid];
+  const CopyRecord rec = records[gid];
   __global const RasterPrim* prim = prims + rec.triangle;
   const uint width = frame.dims[0], height = frame.dims[1];
   const uint4 tri = triangles[rec.triangle];
@@ -44,9 +44,9 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_f
   const float3 a = positions[tri.x].xyz, b = positions[tri.y].xyz, c = positions[tri.z].xyz;
   const float3 to_light = light.directional ? -vload3(0, light.direction) : vload3(0, light.position) - a;
   const float sign = dot(cross(b - a, c - a), to_light) > 0.0f ? -1.0f : 1.0f;
-  ulong mask = raster_tile_mask(prim, rec.tile, width, height);
+  ulong mask = raster_tile_mask(prim, rec.cell, width, height);
   uint x, y;
-  while (raster_next_pixel(&mask, rec.tile, &x, &y)) {
+  while (raster_next_pixel(&mask, rec.cell, &x, &y)) {
     float3 add;
     if (m.kind == VOXR_MATERIAL_SHEET) {
       add = -log(max((float3)(m.transmittance[0], m.transmittance[1], m.transmittance[2]), (float3)(1e-30f)));

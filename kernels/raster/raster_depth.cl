@@ -7,7 +7,7 @@
  *     previous layer's visibility buffer has a triangle and the fragment lies farther than its depth by more
  *     than epsilon_ulps float steps (depths are non-negative, so their bits order as uints; the same
  *     triangle gives the same depth bits at a pixel, so it is never kept twice). shape: as raster_depth.
- * in:  prims (raster_setup.cl), records (raster_expand.cl), previous (peel: the last layer's words)
+ * in:  prims (raster_setup.cl), records (util/expand_copies.cl), previous (peel: the last layer's words)
  * out: visibility[y * width + x] */
 #pragma OPENCL EXTENSION cl_khr_int64_extended_atomics : enable
 
@@ -24,15 +24,15 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_clear(
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_depth(
-    uint width, uint height, __global const RasterPrim* prims, __global const RasterRecord* records,
+    uint width, uint height, __global const RasterPrim* prims, __global const CopyRecord* records,
     uint record_count, __global ulong* visibility) {
   const uint gid = get_global_id(0);
   if (gid >= record_count) return;
-  const RasterRecord rec = records[gid];
+  const CopyRecord rec = records[gid];
   __global const RasterPrim* prim = prims + rec.triangle;
-  ulong mask = raster_tile_mask(prim, rec.tile, width, height);
+  ulong mask = raster_tile_mask(prim, rec.cell, width, height);
   uint x, y;
-  while (raster_next_pixel(&mask, rec.tile, &x, &y)) {
+  while (raster_next_pixel(&mask, rec.cell, &x, &y)) {
     const float depth = raster_depth_at(prim, x, y, width, height);
     const ulong word = raster_visibility_word(depth, rec.triangle);
     __global ulong* slot = visibility + (ulong)y * width + x;
@@ -46,15 +46,15 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_depth(
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_depth_peel(
-    uint width, uint height, __global const RasterPrim* prims, __global const RasterRecord* records,
+    uint width, uint height, __global const RasterPrim* prims, __global const CopyRecord* records,
     uint record_count, __global const ulong* previous, uint epsilon_ulps, __global ulong* visibility) {
   const uint gid = get_global_id(0);
   if (gid >= record_count) return;
-  const RasterRecord rec = records[gid];
+  const CopyRecord rec = records[gid];
   __global const RasterPrim* prim = prims + rec.triangle;
-  ulong mask = raster_tile_mask(prim, rec.tile, width, height);
+  ulong mask = raster_tile_mask(prim, rec.cell, width, height);
   uint x, y;
-  while (raster_next_pixel(&mask, rec.tile, &x, &y)) {
+  while (raster_next_pixel(&mask, rec.cell, &x, &y)) {
     const ulong pixel = (ulong)y * width + x;
     const ulong before = previous[pixel];
     if (before == ~0ul) continue; /* the previous layer is empty here: so is every later one */

@@ -4,7 +4,7 @@
  * triangle and, when the voxel range of its bounding box spans at most VOX_DIRECT_SPAN cells per axis and
  * VOX_DIRECT_CELLS in all, decides every cell with the exact rule of vox_scanline.h — the same predicate
  * as the slice method's copies, so both give the same voxels. Larger triangles are appended to `large` for
- * the papers' expand + scanline path (vox_setup.cl -> scan -> vox_expand.cl -> vox_raster.cl).
+ * the papers' expand + scanline path (vox_setup.cl -> scan -> util/expand_copies.cl -> vox_raster.cl).
  *
  * Conservative mode has a dedicated form of the 13-axis test for speed on CPUs: scalar variables only (a
  * private array costs a work-group-sized context array on PoCL), the nine edge axes in 32-bit integers

@@ -1,5 +1,5 @@
 /* vox_raster.cl — the scanline stage of the slice voxelizer: each work item takes one copy record
- * (triangle, slab, block of rows_per_copy rows) written by vox_expand.cl and rasterizes it
+ * (triangle; cell: block of rows_per_copy rows, slab) written by util/expand_copies.cl and rasterizes it
  * (vox_scanline.h: exact rules, passes, channels).
  * in:  snapped triangles (vox_setup.cl), copy records; pass 1 also the ranked occupancy words
  * out: occupancy bits (pass 0) or the attribute accumulators (pass 1)
@@ -11,15 +11,15 @@
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
-    VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const VoxCopy* copies, uint copy_count,
+    VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const CopyRecord* copies, uint copy_count,
     __global uint* occ, __global const ulong* ranked, __global long* acc, __global uint* material) {
   const uint gid = get_global_id(0);
   if (gid >= copy_count) return;
-  const VoxCopy rec = copies[gid];
+  const CopyRecord rec = copies[gid];
   VoxTri t;
   const uint material_id = vox_fetch_triangle(&t, snapped, rec.triangle);
   vox_derive(&t, &grid);
-  const int row_first = t.first[1] + (int)(VOXR_COPY_BLOCK(rec) * grid.rows_per_copy);
+  const int row_first = t.first[1] + (int)(VOXR_CELL_COLUMN(rec.cell) * grid.rows_per_copy);
   const int row_last = min(t.last[1], row_first + (int)grid.rows_per_copy - 1);
   VoxRule rule;
   vox_rule_init(&rule, &t, &grid);
@@ -28,5 +28,5 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
 #if VOX_PASS == 1
   if (grid.channels & VOX_CH_NORMAL) vox_fixed_normal(vox_tri_normal(&t), &w.normal);
 #endif
-  vox_scan_slab(&t, &rule, &grid, (int)VOXR_COPY_SLICE(rec), row_first, row_last, 1, &w);
+  vox_scan_slab(&t, &rule, &grid, (int)VOXR_CELL_ROW(rec.cell), row_first, row_last, 1, &w);
 }

@@ -2,7 +2,8 @@
  * copies (one per slab and block of rows_per_copy rows).
  * in:  positions (float4), triangles (uint4: indices, material); with VOX_SETUP_LIST, entry e is triangle
  *      list[e] (the large triangles vox_direct.cl leaves to this path), else triangle e
- * out: snapped[e] (what the later stages read instead of the mesh), copy_counts[e], copy_info[e];
+ * out: snapped[e] (what the later stages read instead of the mesh), copy_counts[e], copy_boxes[e] (cells:
+ *      block of rows across, slab down; util/expand_copies.cl);
  *      too_large counts triangles the host should have split (must stay 0).
  * shape: one work item per entry (grid.triangle_count entries). */
 #include "voxr_layout.h"
@@ -18,23 +19,23 @@
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_setup(
     VoxGridParams grid, __global const float4* positions, __global const uint4* triangles,
     __global const uint* list, __global VoxSnappedTriangle* snapped, __global uint* copy_counts,
-    __global VoxCopyInfo* copy_info, __global uint* too_large) {
+    __global CopyBox* copy_boxes, __global uint* too_large) {
   const uint e = get_global_id(0);
   if (e >= grid.triangle_count) return;
   VoxTri tri;
   vox_prepare_triangle(&tri, &grid, positions, triangles[VOX_SETUP_LIST ? list[e] : e], snapped, e);
   uint count = 0;
-  VoxCopyInfo info = {0, 0};
+  CopyBox box = {0, 0};
   if (vox_triangle_active(&tri)) {
     if (vox_triangle_too_large(&tri)) {
       atomic_inc(too_large);
     } else {
       const uint blocks = vox_row_blocks(&tri, grid.rows_per_copy);
       count = (uint)(tri.last[2] - tri.first[2] + 1) * blocks;
-      info.first_slab = (uint)tri.first[2];
-      info.row_blocks = blocks;
+      box.first = VOXR_CELL(0u, (uint)tri.first[2]);
+      box.width = blocks;
     }
   }
   copy_counts[e] = count;
-  copy_info[e] = info;
+  copy_boxes[e] = box;
 }

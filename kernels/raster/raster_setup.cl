@@ -10,7 +10,7 @@
  * contraction, so the host mirror (host/render/reference_raster.cpp) is exact where division is correctly
  * rounded (the runtime asks for it where the device offers it).
  * in:  params, positions (float4), triangles (uint4: indices, material), materials (RenderMaterial)
- * out: prims[t] (vertex_count 0 when not drawn), tile_counts[t]
+ * out: prims[t] (vertex_count 0 when not drawn), tile_counts[t], tile_boxes[t] (its tiles: util/expand_copies.cl)
  * shape: one work item per triangle. */
 #include "raster_coverage.h"
 
@@ -75,9 +75,10 @@ inline float4 raster_to_clip(const RasterParams* p, float4 q) {
   return (float4)(c[0], c[1], c[2], c[3]);
 }
 
-/* Sets up triangle `t` into prims[t]; returns its tile count (0: not drawn). */
+/* Sets up triangle `t` into prims[t] and its tiles into `box`; returns its tile count (0: not drawn). */
 inline uint raster_setup_triangle(const RasterParams* p, __global const float4* positions, uint4 tri,
-                                  __global const RenderMaterial* materials, __global RasterPrim* out) {
+                                  __global const RenderMaterial* materials, __global RasterPrim* out,
+                                  CopyBox* box) {
   if (tri.w >= p->material_count) return 0;
   const uint kind = materials[tri.w].kind;
   if (kind >= 32u || !((p->kind_mask >> kind) & 1u)) return 0;
@@ -195,8 +196,8 @@ inline uint raster_setup_triangle(const RasterParams* p, __global const float4* 
     out->x[i] = px[s];
     out->y[i] = py[s];
   }
-  out->first_tile = tile_x0 | (tile_y0 << 16);
-  out->tiles_x = tiles_x;
+  box->first = VOXR_CELL(tile_x0, tile_y0);
+  box->width = tiles_x;
   out->depth[0] = depth0;
   out->depth[1] = depth1;
   out->depth[2] = depth2;
@@ -207,11 +208,14 @@ inline uint raster_setup_triangle(const RasterParams* p, __global const float4* 
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_setup(
     RasterParams params, __global const float4* positions, __global const uint4* triangles,
-    __global const RenderMaterial* materials, __global RasterPrim* prims, __global uint* tile_counts) {
+    __global const RenderMaterial* materials, __global RasterPrim* prims, __global uint* tile_counts,
+    __global CopyBox* tile_boxes) {
   const uint t = get_global_id(0);
   if (t >= params.triangle_count) return;
   __global RasterPrim* prim = prims + t;
-  const uint count = raster_setup_triangle(&params, positions, triangles[t], materials, prim);
+  CopyBox box = {0, 0};
+  const uint count = raster_setup_triangle(&params, positions, triangles[t], materials, prim, &box);
   if (count == 0) prim->vertex_count = 0;
   tile_counts[t] = count;
+  tile_boxes[t] = box;
 }

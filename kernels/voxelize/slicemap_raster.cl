@@ -40,18 +40,18 @@ inline long slicemap_floor_div(long a, long d) {
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void slicemap_raster(
-    VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const SlicemapRecord* records, uint record_count,
+    VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const CopyRecord* records, uint record_count,
     __global uint* depth_range, __global uint* slicemap) {
   const uint gid = get_global_id(0);
   if (gid >= record_count) return;
-  const SlicemapRecord rec = records[gid];
+  const CopyRecord rec = records[gid];
   VoxTri t;
   vox_fetch_triangle(&t, snapped, rec.triangle);
   vox_derive(&t, &grid);
 
-  const int row_first = t.first[1] + (int)(rec.tile >> 16) * SLICEMAP_TILE_ROWS;
+  const int row_first = t.first[1] + (int)VOXR_CELL_ROW(rec.cell) * SLICEMAP_TILE_ROWS;
   const int row_last = min(t.last[1], row_first + SLICEMAP_TILE_ROWS - 1);
-  const int col_first = t.first[0] + (int)(rec.tile & 0xffffu) * SLICEMAP_TILE_COLS;
+  const int col_first = t.first[0] + (int)VOXR_CELL_COLUMN(rec.cell) * SLICEMAP_TILE_COLS;
   const int col_last = min(t.last[0], col_first + SLICEMAP_TILE_COLS - 1);
 
   VoxCoverage coverage; /* the centre rule, shared with vox_scanline.h */

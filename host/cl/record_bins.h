@@ -1,0 +1,58 @@
+// Copy records, the duplication step that the slice voxelizer (a triangle's slabs x blocks of rows), the
+// slicemap voxelizer (its tiles of column centres) and the kernel rasterizer (its 8x8-pixel tiles) share:
+// their setup kernel writes per triangle a copy count and a CopyBox (voxr_layout.h); scan() makes the
+// exclusive prefix sum of the counts and splits the records into batches within a byte budget;
+// for_each_batch() expands each batch (kernels/util/expand_copies.cl: one work item per record, a binary
+// search over the scan) and hands it to the consumer kernel. The buffers are kept and grown, so one
+// RecordBins per pipeline (or per raster target) reuses them run after run.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cl/cl_runtime.h"
+#include "cl/scratch_buffers.h"
+
+namespace voxr {
+
+class RecordBins {
+ public:
+  // Most records in one batch, whatever the budget: consumers count them in 32 bits.
+  static constexpr uint64_t kMaxBatch = uint64_t(1) << 30;
+
+  // The programs scan() and for_each_batch() use (the scan and the expand kernel), to build ahead of timed
+  // work.
+  static std::vector<ProgramSpec> programs();
+
+  // Sizes the buffers the setup kernel writes for `triangles` (< 2^32) triangles and forgets the last
+  // binning.
+  void prepare(ClRuntime& cl, uint64_t triangles);
+  const cl::Buffer& counts() const { return counts_.buffer; }  // uint per triangle: its copies
+  const cl::Buffer& boxes() const { return boxes_.buffer; }    // CopyBox per triangle: where they lie
+
+  // Scans the counts the setup kernel wrote, under the profiler name `name`, and waits for the record total
+  // (one readback). Batches then hold at most `budget_bytes` of records (at least 1, at most kMaxBatch).
+  void scan(ClRuntime& cl, uint64_t budget_bytes, const std::string& name);
+
+  uint64_t triangles() const { return triangles_; }
+  uint64_t records() const { return records_; }      // all batches together
+  uint64_t batch_records() const { return batch_; }  // records per batch (the last may hold fewer)
+  uint64_t batches() const { return batch_ == 0 ? 0 : (records_ + batch_ - 1) / batch_; }
+  // Device bytes this binning uses: per triangle its count, box and offset; one batch of records.
+  uint64_t device_bytes() const;
+
+  // Calls `consume(records, count)` once per batch, in order, with the batch's CopyRecords (record
+  // window_begin + i at i) after expanding them under the profiler name `name`. A binning of one batch is
+  // expanded once: later calls reuse its records.
+  void for_each_batch(ClRuntime& cl, const std::string& name,
+                      const std::function<void(const cl::Buffer&, uint32_t)>& consume);
+
+ private:
+  uint64_t triangles_ = 0, records_ = 0, batch_ = 0;
+  bool expanded_ = false;  // the single batch's records are in place
+  GrowingBuffer counts_, boxes_, offsets_, records_buffer_;
+};
+
+}  // namespace voxr
