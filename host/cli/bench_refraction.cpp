@@ -21,7 +21,7 @@
 #include "core/scene.h"
 #include "io/atomic_file.h"
 #include "metrics/refraction_metrics.h"
-#include "reference/inward_distance.h"
+#include "reference/embree_reference.h"
 #include "reference/reference_refraction.h"
 #include "reference/reference_renderer.h"
 #include "reference/reference_scene.h"
@@ -188,20 +188,22 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& 
           exact.build_ms, exact.trace_ms, exact.shadow_ms, exact.shade_ms, r.frame_ms);
       std::fflush(stdout);
     }
-    const HostTransmittance exact_shadows = [&](std::span<const SurfaceSample> samples) {
-      return reference_transmittance(reference, light, samples);
-    };
-
     FrameRenderer renderer(cl);
-    renderer.set_scene(soup, materials);
+    EmbreeReference scene_reference(reference, soup, materials);
     renderer.set_environment(environment);
     if (any_image_space) {
+      // image-space's per-scene setup (Wyman's d_N, ray cast) runs in set_scene once the technique is made.
+      RenderOptions image_space;
+      image_space.shadows = shadows;
+      image_space.refraction.method = RefractionMethod::kImageSpace;
+      renderer.prepare(image_space);
       progress(fmt::format("{}: ray casting d_N", label));
-      const auto start = Clock::now();
-      renderer.set_inward_distances(inward_distances(reference, soup, materials, vertex_normals(soup)));
-      precompute_table +=
-          fmt::format("| {} | {} | {:.1f} |\n", label, soup.triangle_count(), ms_since(start));
     }
+    const auto scene_start = Clock::now();
+    renderer.set_scene(soup, materials, &scene_reference);
+    if (any_image_space)
+      precompute_table +=
+          fmt::format("| {} | {} | {:.1f} |\n", label, soup.triangle_count(), ms_since(scene_start));
 
     for (const MethodCase& m : methods) {
       const std::vector<uint32_t> resolutions = m.grid ? args.resolutions : std::vector<uint32_t>{0};
@@ -212,14 +214,12 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& 
         o.shadow_resolution = args.shadow_res;
         o.refraction = m.options;
         if (res) o.refraction.resolution = res;
-        const HostTransmittance host =
-            shadows == ShadowMethod::kReference ? exact_shadows : HostTransmittance{};
         renderer.prepare(o);
-        for (int w = 0; w < args.warmup; ++w) renderer.render(light, camera, o, host);
+        for (int w = 0; w < args.warmup; ++w) renderer.render(light, camera, o);
         std::vector<double> ms, refraction_ms, layers_ms;
         FrameStats stats;
         for (int r = 0; r < args.repeat; ++r) {
-          renderer.render(light, camera, o, host, &stats);
+          renderer.render(light, camera, o, &stats);
           ms.push_back(stats.frame_ms);
           const auto it = stats.stage_ms.find("refraction");
           refraction_ms.push_back(it == stats.stage_ms.end() ? 0.0 : it->second);
@@ -231,7 +231,7 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& 
         e.shadows = ShadowMethod::kReference;
         e.keep_samples = true;
         renderer.prepare(e);
-        const RenderedFrame frame = renderer.render(light, camera, e, exact_shadows);
+        const RenderedFrame frame = renderer.render(light, camera, e);
         Row row;
         row.scene = label;
         row.method = refraction_method_info(m.options.method).name;

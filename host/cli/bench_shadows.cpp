@@ -135,7 +135,7 @@ ShadowBenchRun measure_shadows(ClRuntime& cl, const BenchShadowsArgs& args) {
         std::vector<double> ms;
         FrameStats stats;
         for (int r = 0; r < args.repeat; ++r) {
-          renderer.render(light, camera, o, {}, &stats);
+          renderer.render(light, camera, o, &stats);
           ms.push_back(stats.frame_ms);
         }
         o.keep_samples = true;

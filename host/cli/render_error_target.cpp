@@ -33,14 +33,7 @@ RenderTargetChoice choose_render_grids(FrameRenderer& renderer, const ReferenceS
   choice.sample_height = std::max(1u, height / 2);
   const CameraFrame sample =
       make_camera_frame(camera, anchor, bounds, choice.sample_width, choice.sample_height);
-  const HostTransmittance exact = [&](std::span<const SurfaceSample> s) {
-    return reference_transmittance(reference, light, s);
-  };
-  const auto frame = [&](const RenderOptions& o) {
-    return renderer
-        .render(light, sample, o, o.shadows == ShadowMethod::kReference ? exact : HostTransmittance{})
-        .image;
-  };
+  const auto frame = [&](const RenderOptions& o) { return renderer.render(light, sample, o).image; };
   // The reference image on the sample: the matched refraction reference, or without refraction the device
   // frame with exact shadows (the same visibility buffer: the shadows' error alone).
   RenderOptions exact_shadows = *options;

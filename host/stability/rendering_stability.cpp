@@ -30,7 +30,7 @@
 #include "metrics/image_metrics.h"
 #include "metrics/refraction_metrics.h"
 #include "metrics/shadow_receivers.h"
-#include "reference/inward_distance.h"
+#include "reference/embree_reference.h"
 #include "reference/reference_refraction.h"
 #include "reference/reference_renderer.h"
 #include "reference/reference_scene.h"
@@ -610,13 +610,9 @@ std::vector<StabilityRow> run_refraction_case(StabilityContext& ctx, const std::
     rows.push_back(row(name, "reference", "pixels with total internal reflection", double(reference_tir), 1.0,
                        true, "the matched reference's paths: the scene shows TIR"));
   FrameRenderer renderer(ctx.cl);
-  renderer.set_scene(s.soup, s.scene.materials);
+  EmbreeReference scene_reference(reference, s.soup, s.scene.materials);
+  renderer.set_scene(s.soup, s.scene.materials, &scene_reference);
   renderer.set_environment(s.environment);
-  renderer.set_inward_distances(
-      inward_distances(reference, s.soup, s.scene.materials, vertex_normals(s.soup)));
-  const HostTransmittance exact_shadows = [&](std::span<const SurfaceSample> samples) {
-    return reference_transmittance(reference, s.light, samples);
-  };
   Picture picture;
   for (const RefractionMethodInfo& m : refraction_methods()) {
     const std::string method(m.name);
@@ -628,7 +624,7 @@ std::vector<StabilityRow> run_refraction_case(StabilityContext& ctx, const std::
     RenderedFrame frame;
     try {
       renderer.prepare(o);
-      frame = renderer.render(s.light, s.camera, o, exact_shadows);
+      frame = renderer.render(s.light, s.camera, o);
     } catch (const Error& e) {
       const double nan = std::numeric_limits<double>::quiet_NaN();
       rows.push_back(row(name, method, "image RMSE vs matched reference", nan, 0.0, false, e.what()));
