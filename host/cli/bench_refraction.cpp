@@ -19,9 +19,9 @@
 #include "core/clock.h"
 #include "core/error.h"
 #include "core/scene.h"
+#include "eval/render_case.h"
 #include "io/atomic_file.h"
 #include "metrics/refraction_metrics.h"
-#include "reference/embree_reference.h"
 #include "reference/reference_refraction.h"
 #include "reference/reference_renderer.h"
 #include "reference/reference_scene.h"
@@ -155,14 +155,13 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& 
   for (const std::string& scene_name : args.scenes) {
     const std::string label = scene_label(scene_name);
     progress(fmt::format("{}: reading", label));
-    Scene scene = load_input(scene_name);
-    const std::vector<Material> materials = scene.materials;
-    const EnvironmentMap environment = make_environment_map(scene.environment);
-    const TriangleSoup soup = take_scene_triangles(scene);
-    validate_soup(soup, scene.source);
-    const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, soup.bounds(), width, height);
-    const RenderLight light = render_light(scene.light, environment.mean(), soup.anchor);
-    const std::vector<RenderMaterial> render_mats = render_materials(materials);
+    RenderCase c(load_input(scene_name), width, height);
+    const std::vector<Material>& materials = c.materials();
+    const EnvironmentMap& environment = c.environment();
+    const TriangleSoup& soup = c.soup();
+    const CameraFrame& camera = c.camera();
+    const RenderLight& light = c.light();
+    const std::vector<RenderMaterial>& render_mats = c.render_materials();
     progress_done();
     fmt::print("{}: {} triangles, {}x{}, load {}\n", label, soup.triangle_count(), width, height,
                load_average_text());
@@ -170,7 +169,7 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& 
 
     // The matched reference, once: what every method is measured against, and Embree's frame.
     progress(fmt::format("{}: tracing the matched reference", label));
-    const ReferenceScene reference(soup, materials);
+    const ReferenceScene& reference = c.reference().scene();
     const RefractionReference exact = render_refraction_reference(reference, render_mats, light, environment,
                                                                   camera, ReferenceModel::kMatched);
     {
@@ -189,7 +188,6 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& 
       std::fflush(stdout);
     }
     FrameRenderer renderer(cl);
-    EmbreeReference scene_reference(reference, soup, materials);
     renderer.set_environment(environment);
     if (any_image_space) {
       // image-space's per-scene setup (Wyman's d_N, ray cast) runs in set_scene once the technique is made.
@@ -200,7 +198,7 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& 
       progress(fmt::format("{}: ray casting d_N", label));
     }
     const auto scene_start = Clock::now();
-    renderer.set_scene(soup, materials, &scene_reference);
+    renderer.set_scene(soup, materials, &c.reference());
     if (any_image_space)
       precompute_table +=
           fmt::format("| {} | {} | {:.1f} |\n", label, soup.triangle_count(), ms_since(scene_start));
