@@ -23,12 +23,10 @@
 #include "io/atomic_file.h"
 #include "metrics/refraction_metrics.h"
 #include "reference/reference_refraction.h"
-#include "reference/reference_renderer.h"
 #include "reference/reference_scene.h"
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
-#include "render/vertex_normals.h"
 
 namespace voxr::cli {
 

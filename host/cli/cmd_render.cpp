@@ -45,13 +45,11 @@
 #include "reference/embree_reference.h"
 #include "reference/reference_refraction.h"
 #include "reference/reference_renderer.h"
-#include "reference/reference_scene.h"
 #include "render/distance_map_refraction.h"
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
 #include "render/shade_host.h"
-#include "render/vertex_normals.h"
 
 namespace voxr::cli {
 

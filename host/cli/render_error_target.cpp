@@ -8,7 +8,6 @@
 #include "core/error.h"
 #include "metrics/image_metrics.h"
 #include "reference/reference_refraction.h"
-#include "reference/reference_renderer.h"
 
 namespace voxr::cli {
 

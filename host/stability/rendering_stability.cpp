@@ -38,7 +38,6 @@
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
 #include "render/shade_host.h"
-#include "render/vertex_normals.h"
 #include "stability/stability_case.h"
 
 namespace voxr {

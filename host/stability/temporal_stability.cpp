@@ -36,7 +36,6 @@
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
-#include "render/vertex_normals.h"
 #include "stability/stability_case.h"
 
 namespace voxr {
