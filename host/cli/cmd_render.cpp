@@ -1,10 +1,10 @@
 // voxr render [SCENE] -o out.png: one image of the scene with transparent shadows and refraction by the
-// chosen methods (render/frame_renderer.h; the Embree references for --shadows reference and --refraction
-// reference|reference-full), a summary of the grids and per-stage times, and with --compare-reference the
-// error against the exact reference: for refraction, image RMSE/PSNR against the matched reference, exit
-// direction error, event-sequence mismatches and non-finite pixels; without refraction, the shadows'
-// transmittance at the same receiver points (RMSE, maximum, share off by more than 0.05, image PSNR). An
-// error image is written beside the output.
+// chosen techniques (render/technique.h), in one frame loop through FrameRenderer for every method, the
+// Embree references (--shadows reference, --refraction reference|reference-full) included, a summary of the
+// grids and per-stage times, and with --compare-reference the error against the exact reference: for
+// refraction, image RMSE/PSNR against the matched reference, exit direction error, event-sequence mismatches
+// and non-finite pixels; without refraction, the shadows' transmittance at the same receiver points (RMSE,
+// maximum, share off by more than 0.05, image PSNR). An error image is written beside the output.
 //
 // Like voxr voxelize, the device is opened and the programs built on a second thread while the scene is read.
 //
@@ -139,8 +139,8 @@ int run_render(const RenderArgs& args) {
   }
   const RefractionMethod asked_refraction = options.refraction.method;
   const bool host_refraction = is_reference_refraction(asked_refraction);
-  // The references render everything on the host; --shadows reference alone runs the device frame with the
-  // exact transmittance traced for its samples.
+  // The reference refractions finish the frame on the host (their technique's render_on_host); --shadows
+  // reference alone runs the device frame with the exact transmittance traced for its samples.
   const bool reference_only = host_refraction;
   if (host_refraction && !args.shadows.empty() && options.shadows != ShadowMethod::kReference)
     fail("--refraction {} traces exact shadows; --shadows {} does not apply (leave it out or say reference)",
@@ -160,8 +160,8 @@ int run_render(const RenderArgs& args) {
     fail("--error-target chooses --res and --shadow-res; leave them out");
   const bool tty = isatty(fileno(stderr)) && !args.quiet;
 
-  std::future<PreparedRuntime<FrameRenderer>> background;
-  background = prepare_in_background<FrameRenderer>(args.device, options);
+  std::future<PreparedRuntime<FrameRenderer>> background =
+      prepare_in_background<FrameRenderer>(args.device, options);
   const auto load_start = Clock::now();
   if (tty) fmt::print(stderr, "\rreading {}...", args.input.empty() ? "the default scene" : args.input);
   Scene scene = args.input.empty() ? default_scene() : load_input(args.input);
