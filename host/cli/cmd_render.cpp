@@ -37,12 +37,12 @@
 #include "core/default_scene.h"
 #include "core/file_extension.h"
 #include "core/scene.h"
+#include "eval/render_case.h"
 #include "io/atomic_file.h"
 #include "io/image_file.h"
 #include "metrics/image_metrics.h"
 #include "metrics/refraction_metrics.h"
 #include "metrics/shadow_receivers.h"
-#include "reference/embree_reference.h"
 #include "reference/reference_refraction.h"
 #include "reference/reference_renderer.h"
 #include "render/distance_map_refraction.h"
@@ -164,15 +164,19 @@ int run_render(const RenderArgs& args) {
       prepare_in_background<FrameRenderer>(args.device, options);
   const auto load_start = Clock::now();
   if (tty) fmt::print(stderr, "\rreading {}...", args.input.empty() ? "the default scene" : args.input);
-  Scene scene = args.input.empty() ? default_scene() : load_input(args.input);
+  Scene loaded = args.input.empty() ? default_scene() : load_input(args.input);
   const char* cr = tty ? "\r" : "";
-  for (const MeshInstance& m : scene.meshes)
+  for (const MeshInstance& m : loaded.meshes)
     for (const std::string& w : m.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
-  const std::vector<Material> materials = scene.materials;
-  const bool animated = is_animated(scene);
-  const EnvironmentMap environment = make_environment_map(scene.environment);
-  const TriangleSoup soup = take_scene_triangles(scene);
-  validate_soup(soup, scene.source);
+  const bool animated = is_animated(loaded);
+  const uint32_t width = size.x ? size.x : loaded.camera.width,
+                 height = size.y ? size.y : loaded.camera.height;
+  // Soup, camera, light, materials and environment (frame 0 of an animated scene).
+  RenderCase c(std::move(loaded), width, height);
+  const Scene& scene = c.scene();
+  const std::vector<Material>& materials = c.materials();
+  const EnvironmentMap& environment = c.environment();
+  const TriangleSoup& soup = c.soup();
   // Without glass in the scene there is nothing to refract: no grid is built.
   if (!has_dielectric(soup, materials) && !host_refraction)
     options.refraction.method = RefractionMethod::kNone;
@@ -183,10 +187,9 @@ int run_render(const RenderArgs& args) {
         "exact",
         scene.source, shadow_method_info(options.shadows).name);
   const Bounds bounds = soup.bounds();
-  const uint32_t width = size.x ? size.x : scene.camera.width, height = size.y ? size.y : scene.camera.height;
-  const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, bounds, width, height);
-  const RenderLight light = render_light(scene.light, environment.mean(), soup.anchor);
-  const std::vector<RenderMaterial> render_mats = render_materials(materials);
+  const CameraFrame& camera = c.camera();
+  const RenderLight& light = c.light();
+  const std::vector<RenderMaterial>& render_mats = c.render_materials();
   const double load_ms = ms_since(load_start);
 
   nlohmann::json report = {{"input", args.input.empty() ? "default scene" : args.input},
@@ -214,17 +217,18 @@ int run_render(const RenderArgs& args) {
   const TriangleSoup* current = &soup;
   // The exact reference of the frame's triangles, its BVH built on first need (the reference techniques,
   // image-space's d_N, --compare-reference).
-  std::unique_ptr<EmbreeReference> reference;
+  std::unique_ptr<EmbreeReference> posed_reference;
   const auto scene_reference = [&]() -> EmbreeReference& {
-    if (!reference) reference = std::make_unique<EmbreeReference>(*current, materials);
-    return *reference;
+    if (current == &soup) return c.reference();
+    if (!posed_reference) posed_reference = std::make_unique<EmbreeReference>(*current, materials);
+    return *posed_reference;
   };
   const auto reference_scene = [&] { return &scene_reference().scene(); };
   // Poses frame f of an animated scene: the references' BVH of the old pose is dropped.
   const auto pose = [&](uint32_t f) {
     pose_scene(scene, f / scene.fps, soup.anchor, posed);
     current = &posed;
-    reference.reset();
+    posed_reference.reset();
   };
   const auto progress = [&](uint32_t f) {
     if (tty && args.frames > 1) fmt::print(stderr, "\r{:<60}\rframe {}/{}", "", f + 1, args.frames);
