@@ -1,6 +1,7 @@
 // The contract every registry row of the render seam (render/technique.h) keeps, parameterised over
 // kShadowTechniques and kRefractionTechniques so a new row is tested by adding it:
-//   shadows     transmittance 1 (to an ulp) where no caster stands between a lit receiver and the light, exactly
+//   shadows     transmittance 1 (to an ulp) where no caster stands between a lit receiver and the light,
+//   exactly
 //               0 (the row's documented answer) in the umbra of an opaque slab, finite images, device bytes
 //               > 0 where the technique has a light-space structure;
 //   refraction  identity paths and the primary samples as ends on a scene without dielectrics, finite images
