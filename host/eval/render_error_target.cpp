@@ -1,4 +1,4 @@
-#include "cli/render_error_target.h"
+#include "eval/render_error_target.h"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 #include "metrics/image_metrics.h"
 #include "reference/reference_refraction.h"
 
-namespace voxr::cli {
+namespace voxr {
 
 RenderTargetChoice choose_render_grids(FrameRenderer& renderer, const ReferenceScene& reference,
                                        const std::vector<RenderMaterial>& materials, const RenderLight& light,
@@ -76,4 +76,4 @@ RenderTargetChoice choose_render_grids(FrameRenderer& renderer, const ReferenceS
   return choice;
 }
 
-}  // namespace voxr::cli
+}  // namespace voxr
