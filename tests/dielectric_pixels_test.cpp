@@ -102,7 +102,7 @@ class BallFrames {
     o.refraction.resolution = 128;
     o.keep_samples = keep_samples;
     renderer_.prepare(o);
-    return renderer_.render(light(), camera(), o, {}, stats);
+    return renderer_.render(light(), camera(), o, stats);
   }
   const std::vector<Material>& materials() const { return materials_; }
 

@@ -37,9 +37,9 @@ struct Rendered {
 
 Rendered render(const TriangleSoup& soup, const EnvironmentMap& environment) {
   FrameRenderer renderer(test::runtime());
-  renderer.set_scene(soup, materials());
+  FixedInwardDistances d_n(inward_distances(soup));
+  renderer.set_scene(soup, materials(), &d_n);
   renderer.set_environment(environment);
-  renderer.set_inward_distances(inward_distances(soup));
   Rendered out;
   for (RefractionMethod m : {RefractionMethod::kImageSpace, RefractionMethod::kNone}) {
     const RenderOptions o = options(m);
@@ -169,9 +169,9 @@ TEST(ImageSpaceRefraction, ConstantEnvironmentWithoutInwardDistancesStillFinite)
   // d_N missing (an empty list): d falls back to d_V; the centre still passes straight through.
   const TriangleSoup soup = scene(false);
   FrameRenderer renderer(test::runtime());
-  renderer.set_scene(soup, materials());
+  FixedInwardDistances no_d_n({});
+  renderer.set_scene(soup, materials(), &no_d_n);
   renderer.set_environment(EnvironmentMap::constant(glm::vec3(0.5f, 0.6f, 0.7f)));
-  renderer.set_inward_distances({});
   const RenderOptions o = options(RefractionMethod::kImageSpace);
   renderer.prepare(o);
   const RenderedFrame f = renderer.render(light(), camera(), o);

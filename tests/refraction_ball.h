@@ -8,11 +8,13 @@
 #include <cmath>
 #include <vector>
 
+#include "core/error.h"
 #include "core/generators.h"
 #include "core/material.h"
 #include "core/triangle_soup.h"
 #include "render/camera_frame.h"
 #include "render/frame_renderer.h"
+#include "render/scene_reference.h"
 #include "voxr_layout.h"
 
 #include <gtest/gtest.h>
@@ -83,6 +85,24 @@ inline std::vector<float> inward_distances(const TriangleSoup& soup) {
     if (std::abs(glm::length(glm::vec3(soup.positions[v])) - kRadius) < 1e-4f) d[v] = 2.0f * kRadius;
   return d;
 }
+
+// A SceneReference that knows only d_N (given, e.g. the analytic one above; empty: unknown everywhere): what
+// image-space refraction asks in its per-scene setup. Every other question fails the test.
+class FixedInwardDistances final : public SceneReference {
+ public:
+  explicit FixedInwardDistances(std::vector<float> d_n) : d_n_(std::move(d_n)) {}
+  std::vector<glm::vec3> transmittance(const RenderLight&, std::span<const SurfaceSample>) override {
+    throw InternalError("FixedInwardDistances has no transmittance");
+  }
+  std::vector<float> inward_distances(const std::vector<glm::vec3>&) override { return d_n_; }
+  HostRefraction refraction(const RenderLight&, const EnvironmentMap&, const CameraFrame&, bool) override {
+    throw InternalError("FixedInwardDistances has no refraction");
+  }
+  double build_ms() const override { return 0.0; }
+
+ private:
+  std::vector<float> d_n_;
+};
 
 inline glm::vec3 vec(const float (&a)[3]) {
   return glm::vec3(a[0], a[1], a[2]);

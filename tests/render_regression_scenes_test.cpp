@@ -9,13 +9,10 @@
 
 #include "core/default_scene.h"
 #include "core/scene.h"
-#include "reference/inward_distance.h"
-#include "reference/reference_refraction.h"
-#include "reference/reference_scene.h"
+#include "reference/embree_reference.h"
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
-#include "render/vertex_normals.h"
 #include "render_regression.h"
 #include "test_support.h"
 
@@ -28,7 +25,8 @@ ImageRgba render_small(const Scene& source, ShadowMethod method, uint32_t res,
   const std::vector<Material> materials = scene.materials;
   const TriangleSoup soup = take_scene_triangles(scene);
   FrameRenderer renderer(test::runtime());
-  renderer.set_scene(soup, materials);
+  EmbreeReference reference(soup, materials);  // the reference shadows ask it
+  renderer.set_scene(soup, materials, &reference);
   RenderOptions o;
   o.shadows = method;
   o.shadow_resolution = res;
@@ -60,6 +58,14 @@ TEST(ShadowImages, DefaultSceneBaselines) {
                                       {0.005, 0.05, 0.005}));
 }
 
+TEST(ShadowImages, DefaultSceneExactAndNone) {
+  const Scene scene = default_scene();
+  EXPECT_TRUE(test::matches_reference(render_small(scene, ShadowMethod::kReference, 128), "default_reference",
+                                      {0.005, 0.05, 0.005}));
+  EXPECT_TRUE(test::matches_reference(render_small(scene, ShadowMethod::kNone, 128), "default_none",
+                                      {0.005, 0.05, 0.005}));
+}
+
 TEST(ShadowImages, GlassOverAFloorColouredShadows) {
   EXPECT_TRUE(test::matches_reference(render_small(scene_file("glass-floor.json"), ShadowMethod::kVoxel, 128),
                                       "glass_floor_voxel_128", {0.005, 0.05, 0.005}));
@@ -81,22 +87,13 @@ ImageRgba render_refraction(RefractionMethod method, uint32_t res = 128, StepRul
   const TriangleSoup soup = take_scene_triangles(scene);
   const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, soup.bounds(), 96, 72);
   const RenderLight light = render_light(scene.light, environment.mean(), soup.anchor);
-  if (is_reference_refraction(method)) {
-    const ReferenceScene reference(soup, materials);
-    return render_refraction_reference(
-               reference, render_materials(materials), light, environment, camera,
-               method == RefractionMethod::kReference ? ReferenceModel::kMatched : ReferenceModel::kFull)
-        .image;
-  }
   FrameRenderer renderer(test::runtime());
-  renderer.set_scene(soup, materials);
+  EmbreeReference reference(soup, materials);
+  renderer.set_scene(soup, materials, &reference);
   renderer.set_environment(environment);
-  if (method == RefractionMethod::kImageSpace) {
-    const ReferenceScene reference(soup, materials);
-    renderer.set_inward_distances(inward_distances(reference, soup, materials, vertex_normals(soup)));
-  }
   RenderOptions o;
-  o.shadows = ShadowMethod::kVoxel;
+  // The references trace their own exact shadows.
+  o.shadows = is_reference_refraction(method) ? ShadowMethod::kReference : ShadowMethod::kVoxel;
   o.shadow_resolution = 64;
   o.refraction.method = method;
   o.refraction.resolution = res;
@@ -119,6 +116,13 @@ TEST(RefractionImages, VoxelTwoAndImageSpace) {
                                       {0.005, 0.05, 0.005}));
   EXPECT_TRUE(test::matches_reference(render_refraction(RefractionMethod::kImageSpace),
                                       "ball_figure_image_space", {0.005, 0.05, 0.005}));
+}
+
+TEST(RefractionImages, DistanceMapsAndNone) {
+  EXPECT_TRUE(test::matches_reference(render_refraction(RefractionMethod::kDistanceMaps),
+                                      "ball_figure_distance_maps", {0.005, 0.05, 0.005}));
+  EXPECT_TRUE(test::matches_reference(render_refraction(RefractionMethod::kNone), "ball_figure_none",
+                                      {0.005, 0.05, 0.005}));
 }
 
 TEST(RefractionImages, References) {

@@ -90,7 +90,7 @@ int run_bench_animation(const BenchAnimationArgs& args) {
       renderer.set_scene(posed, materials);
       pose_ms.push_back(ms_since(pose_start));
       FrameStats stats;
-      renderer.render(light, camera, options, {}, &stats);
+      renderer.render(light, camera, options, &stats);
       frame_ms.push_back(stats.frame_ms);
       for (const auto& [name, ms] : stats.stage_ms) stage_ms[name].push_back(ms);
     }

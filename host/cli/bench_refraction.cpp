@@ -21,16 +21,14 @@
 #include "core/clock.h"
 #include "core/error.h"
 #include "core/scene.h"
+#include "eval/render_case.h"
 #include "io/atomic_file.h"
 #include "metrics/refraction_metrics.h"
-#include "reference/inward_distance.h"
 #include "reference/reference_refraction.h"
-#include "reference/reference_renderer.h"
 #include "reference/reference_scene.h"
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
-#include "render/vertex_normals.h"
 
 namespace voxr::cli {
 
@@ -157,14 +155,13 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& 
   for (const std::string& scene_name : args.scenes) {
     const std::string label = scene_label(scene_name);
     progress(fmt::format("{}: reading", label));
-    Scene scene = load_input(scene_name);
-    const std::vector<Material> materials = scene.materials;
-    const EnvironmentMap environment = make_environment_map(scene.environment);
-    const TriangleSoup soup = take_scene_triangles(scene);
-    validate_soup(soup, scene.source);
-    const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, soup.bounds(), width, height);
-    const RenderLight light = render_light(scene.light, environment.mean(), soup.anchor);
-    const std::vector<RenderMaterial> render_mats = render_materials(materials);
+    RenderCase c(load_input(scene_name), width, height);
+    const std::vector<Material>& materials = c.materials();
+    const EnvironmentMap& environment = c.environment();
+    const TriangleSoup& soup = c.soup();
+    const CameraFrame& camera = c.camera();
+    const RenderLight& light = c.light();
+    const std::vector<RenderMaterial>& render_mats = c.render_materials();
     progress_done();
     fmt::print("{}: {} triangles, {}x{}, load {}\n", label, soup.triangle_count(), width, height,
                load_average_text());
@@ -172,7 +169,7 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& 
 
     // The matched reference, once: what every method is measured against, and Embree's frame.
     progress(fmt::format("{}: tracing the matched reference", label));
-    const ReferenceScene reference(soup, materials);
+    const ReferenceScene& reference = c.reference().scene();
     const RefractionReference exact = render_refraction_reference(reference, render_mats, light, environment,
                                                                   camera, ReferenceModel::kMatched);
     {
@@ -190,20 +187,21 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& 
           exact.build_ms, exact.trace_ms, exact.shadow_ms, exact.shade_ms, r.frame_ms);
       std::fflush(stdout);
     }
-    const HostTransmittance exact_shadows = [&](std::span<const SurfaceSample> samples) {
-      return reference_transmittance(reference, light, samples);
-    };
-
     FrameRenderer renderer(cl);
-    renderer.set_scene(soup, materials);
     renderer.set_environment(environment);
     if (any_image_space) {
+      // image-space's per-scene setup (Wyman's d_N, ray cast) runs in set_scene once the technique is made.
+      RenderOptions image_space;
+      image_space.shadows = shadows;
+      image_space.refraction.method = RefractionMethod::kImageSpace;
+      renderer.prepare(image_space);
       progress(fmt::format("{}: ray casting d_N", label));
-      const auto start = Clock::now();
-      renderer.set_inward_distances(inward_distances(reference, soup, materials, vertex_normals(soup)));
-      precompute_table +=
-          fmt::format("| {} | {} | {:.1f} |\n", label, soup.triangle_count(), ms_since(start));
     }
+    const auto scene_start = Clock::now();
+    renderer.set_scene(soup, materials, &c.reference());
+    if (any_image_space)
+      precompute_table +=
+          fmt::format("| {} | {} | {:.1f} |\n", label, soup.triangle_count(), ms_since(scene_start));
 
     for (const MethodCase& m : methods) {
       const std::vector<uint32_t> resolutions = m.grid ? args.resolutions : std::vector<uint32_t>{0};
@@ -214,14 +212,12 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& 
         o.shadow_resolution = args.shadow_res;
         o.refraction = m.options;
         if (res) o.refraction.resolution = res;
-        const HostTransmittance host =
-            shadows == ShadowMethod::kReference ? exact_shadows : HostTransmittance{};
         renderer.prepare(o);
-        for (int w = 0; w < args.warmup; ++w) renderer.render(light, camera, o, host);
+        for (int w = 0; w < args.warmup; ++w) renderer.render(light, camera, o);
         std::vector<double> ms, refraction_ms, layers_ms;
         FrameStats stats;
         for (int r = 0; r < args.repeat; ++r) {
-          renderer.render(light, camera, o, host, &stats);
+          renderer.render(light, camera, o, &stats);
           ms.push_back(stats.frame_ms);
           double traced = 0.0;  // listing the pixels that see a dielectric and tracing them
           for (const char* stage : {"dielectric pixels", "refraction"})
@@ -235,7 +231,7 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const BenchRefractionArgs& 
         e.shadows = ShadowMethod::kReference;
         e.keep_samples = true;
         renderer.prepare(e);
-        const RenderedFrame frame = renderer.render(light, camera, e, exact_shadows);
+        const RenderedFrame frame = renderer.render(light, camera, e);
         Row row;
         row.scene = label;
         row.method = refraction_method_info(m.options.method).name;

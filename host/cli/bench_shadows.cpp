@@ -20,6 +20,7 @@
 #include "core/clock.h"
 #include "core/default_scene.h"
 #include "core/scene.h"
+#include "eval/render_case.h"
 #include "io/atomic_file.h"
 #include "metrics/image_metrics.h"
 #include "metrics/shadow_receivers.h"
@@ -78,21 +79,19 @@ ShadowBenchRun measure_shadows(ClRuntime& cl, const BenchShadowsArgs& args) {
   std::vector<Row>& rows = run.rows;
   std::string& fresh_table = run.fresh_table;
   for (const std::string& scene_name : args.scenes) {
-    Scene scene = scene_name == "default" ? default_scene() : load_input(scene_name);
-    const std::vector<Material> materials = scene.materials;
-    const TriangleSoup soup = take_scene_triangles(scene);
-    validate_soup(soup, scene.source);
-    const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, soup.bounds(), width, height);
-    const RenderLight light =
-        render_light(scene.light, make_environment_map(scene.environment).mean(), soup.anchor);
-    const std::vector<RenderMaterial> render_mats = render_materials(materials);
+    RenderCase c(scene_name == "default" ? default_scene() : load_input(scene_name), width, height);
+    const std::vector<Material>& materials = c.materials();
+    const TriangleSoup& soup = c.soup();
+    const CameraFrame& camera = c.camera();
+    const RenderLight& light = c.light();
+    const std::vector<RenderMaterial>& render_mats = c.render_materials();
     const std::string label = scene_label(scene_name);
     fmt::print("{}: {} triangles, {}x{}, load {:.2f}\n", label, soup.triangle_count(), width, height,
                load_averages()[0]);
     std::fflush(stdout);
 
     FrameRenderer renderer(cl);
-    renderer.set_scene(soup, materials);
+    renderer.set_scene(soup, materials, &c.reference());
     // The exact transmittance at the camera's samples, and what it costs Embree per frame.
     RenderOptions first;
     first.shadows = ShadowMethod::kNone;
@@ -136,7 +135,7 @@ ShadowBenchRun measure_shadows(ClRuntime& cl, const BenchShadowsArgs& args) {
         std::vector<double> ms;
         FrameStats stats;
         for (int r = 0; r < args.repeat; ++r) {
-          renderer.render(light, camera, o, {}, &stats);
+          renderer.render(light, camera, o, &stats);
           ms.push_back(stats.frame_ms);
         }
         o.keep_samples = true;

@@ -1,10 +1,10 @@
 // voxr render [SCENE] -o out.png: one image of the scene with transparent shadows and refraction by the
-// chosen methods (render/frame_renderer.h; the Embree references for --shadows reference and --refraction
-// reference|reference-full), a summary of the grids and per-stage times, and with --compare-reference the
-// error against the exact reference: for refraction, image RMSE/PSNR against the matched reference, exit
-// direction error, event-sequence mismatches and non-finite pixels; without refraction, the shadows'
-// transmittance at the same receiver points (RMSE, maximum, share off by more than 0.05, image PSNR). An
-// error image is written beside the output.
+// chosen techniques (render/technique.h), in one frame loop through FrameRenderer for every method, the
+// Embree references (--shadows reference, --refraction reference|reference-full) included, a summary of the
+// grids and per-stage times, and with --compare-reference the error against the exact reference: for
+// refraction, image RMSE/PSNR against the matched reference, exit direction error, event-sequence mismatches
+// and non-finite pixels; without refraction, the shadows' transmittance at the same receiver points (RMSE,
+// maximum, share off by more than 0.05, image PSNR). An error image is written beside the output.
 //
 // Like voxr voxelize, the device is opened and the programs built on a second thread while the scene is read.
 //
@@ -33,26 +33,25 @@
 #include "cli/option_groups_render.h"
 #include "cli/parse_args.h"
 #include "cli/prepared_runtime.h"
-#include "cli/render_error_target.h"
 #include "core/animation.h"
 #include "core/clock.h"
 #include "core/default_scene.h"
 #include "core/file_extension.h"
 #include "core/scene.h"
+#include "eval/render_case.h"
+#include "eval/render_error_target.h"
 #include "io/atomic_file.h"
 #include "io/image_file.h"
 #include "metrics/image_metrics.h"
 #include "metrics/refraction_metrics.h"
 #include "metrics/shadow_receivers.h"
-#include "reference/inward_distance.h"
 #include "reference/reference_refraction.h"
 #include "reference/reference_renderer.h"
-#include "reference/reference_scene.h"
+#include "render/distance_map_refraction.h"
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
 #include "render/shade_host.h"
-#include "render/vertex_normals.h"
 
 namespace voxr::cli {
 
@@ -142,8 +141,8 @@ int run_render(const RenderArgs& args) {
   }
   const RefractionMethod asked_refraction = options.refraction.method;
   const bool host_refraction = is_reference_refraction(asked_refraction);
-  // The references render everything on the host; --shadows reference alone runs the device frame with the
-  // exact transmittance traced for its samples.
+  // The reference refractions finish the frame on the host (their technique's render_on_host); --shadows
+  // reference alone runs the device frame with the exact transmittance traced for its samples.
   const bool reference_only = host_refraction;
   if (host_refraction && !args.shadows.empty() && options.shadows != ShadowMethod::kReference)
     fail("--refraction {} traces exact shadows; --shadows {} does not apply (leave it out or say reference)",
@@ -163,19 +162,23 @@ int run_render(const RenderArgs& args) {
     fail("--error-target chooses --res and --shadow-res; leave them out");
   const bool tty = isatty(fileno(stderr)) && !args.quiet;
 
-  std::future<PreparedRuntime<FrameRenderer>> background;
-  if (!reference_only) background = prepare_in_background<FrameRenderer>(args.device, options);
+  std::future<PreparedRuntime<FrameRenderer>> background =
+      prepare_in_background<FrameRenderer>(args.device, options);
   const auto load_start = Clock::now();
   if (tty) fmt::print(stderr, "\rreading {}...", args.input.empty() ? "the default scene" : args.input);
-  Scene scene = args.input.empty() ? default_scene() : load_input(args.input);
+  Scene loaded = args.input.empty() ? default_scene() : load_input(args.input);
   const char* cr = tty ? "\r" : "";
-  for (const MeshInstance& m : scene.meshes)
+  for (const MeshInstance& m : loaded.meshes)
     for (const std::string& w : m.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
-  const std::vector<Material> materials = scene.materials;
-  const bool animated = is_animated(scene);
-  const EnvironmentMap environment = make_environment_map(scene.environment);
-  const TriangleSoup soup = take_scene_triangles(scene);
-  validate_soup(soup, scene.source);
+  const bool animated = is_animated(loaded);
+  const uint32_t width = size.x ? size.x : loaded.camera.width,
+                 height = size.y ? size.y : loaded.camera.height;
+  // Soup, camera, light, materials and environment (frame 0 of an animated scene).
+  RenderCase c(std::move(loaded), width, height);
+  const Scene& scene = c.scene();
+  const std::vector<Material>& materials = c.materials();
+  const EnvironmentMap& environment = c.environment();
+  const TriangleSoup& soup = c.soup();
   // Without glass in the scene there is nothing to refract: no grid is built.
   if (!has_dielectric(soup, materials) && !host_refraction)
     options.refraction.method = RefractionMethod::kNone;
@@ -186,10 +189,9 @@ int run_render(const RenderArgs& args) {
         "exact",
         scene.source, shadow_method_info(options.shadows).name);
   const Bounds bounds = soup.bounds();
-  const uint32_t width = size.x ? size.x : scene.camera.width, height = size.y ? size.y : scene.camera.height;
-  const CameraFrame camera = make_camera_frame(scene.camera, soup.anchor, bounds, width, height);
-  const RenderLight light = render_light(scene.light, environment.mean(), soup.anchor);
-  const std::vector<RenderMaterial> render_mats = render_materials(materials);
+  const CameraFrame& camera = c.camera();
+  const RenderLight& light = c.light();
+  const std::vector<RenderMaterial>& render_mats = c.render_materials();
   const double load_ms = ms_since(load_start);
 
   nlohmann::json report = {{"input", args.input.empty() ? "default scene" : args.input},
@@ -201,15 +203,6 @@ int run_render(const RenderArgs& args) {
                            {"size", {width, height}},
                            {"animated", animated}};
   if (animated) report["fps"] = scene.fps;
-  if (is_voxel_refraction(options.refraction.method))
-    report["refraction_options"] = {{"res", options.refraction.resolution},
-                                    {"step", step_rule_info(options.refraction.step).name},
-                                    {"normals", normal_kind_info(options.refraction.normals).name},
-                                    {"angle_threshold_deg", options.refraction.angle_threshold_deg}};
-  if (options.refraction.method == RefractionMethod::kDistanceMaps)
-    report["refraction_options"] = {{"layers", options.refraction.layers},
-                                    {"layer_res", options.refraction.layer_res},
-                                    {"max_events", options.refraction.max_events}};
   ImageRgba image;
   std::vector<SurfaceSample> samples;
   std::vector<glm::vec3> transmittance;
@@ -218,21 +211,26 @@ int run_render(const RenderArgs& args) {
   std::map<std::string, std::vector<double>> stage_ms;  // per stage, one per frame
   nlohmann::json frames = nlohmann::json::array();
   FrameStats stats;
+  TechniqueDescription shadow_description, refraction_description;  // the device frame's techniques
   std::optional<RenderTargetChoice> target;
   FrameStats fixed_stats;  // --error-target: one frame on the fixed 512 grids it replaces
   // The frame's triangles: `soup` (frame 0, or every frame of a static scene) or `posed`.
   TriangleSoup posed;
   const TriangleSoup* current = &soup;
-  std::unique_ptr<ReferenceScene> reference;
-  const auto reference_scene = [&] {
-    if (!reference) reference = std::make_unique<ReferenceScene>(*current, materials);
-    return reference.get();
+  // The exact reference of the frame's triangles, its BVH built on first need (the reference techniques,
+  // image-space's d_N, --compare-reference).
+  std::unique_ptr<EmbreeReference> posed_reference;
+  const auto scene_reference = [&]() -> EmbreeReference& {
+    if (current == &soup) return c.reference();
+    if (!posed_reference) posed_reference = std::make_unique<EmbreeReference>(*current, materials);
+    return *posed_reference;
   };
+  const auto reference_scene = [&] { return &scene_reference().scene(); };
   // Poses frame f of an animated scene: the references' BVH of the old pose is dropped.
   const auto pose = [&](uint32_t f) {
     pose_scene(scene, f / scene.fps, soup.anchor, posed);
     current = &posed;
-    reference.reset();
+    posed_reference.reset();
   };
   const auto progress = [&](uint32_t f) {
     if (tty && args.frames > 1) fmt::print(stderr, "\r{:<60}\rframe {}/{}", "", f + 1, args.frames);
@@ -245,134 +243,80 @@ int run_render(const RenderArgs& args) {
                       {"stages", stages}});
     if (pattern) write_image(image, pattern->name(f));
   };
-  if (reference_only) {
-    if (tty) fmt::print(stderr, "\r{:<60}\rtracing the reference...", "");
-    reference_scene();
-    for (uint32_t f = 0; f < args.frames; ++f) {
-      progress(f);
-      double pose_ms = 0.0;
-      if (animated) {
-        const auto pose_start = Clock::now();
-        pose(f);
-        pose_ms = ms_since(pose_start);
-      }
-      const auto frame_start = Clock::now();
-      // Built here for an animated scene's every frame (counted in the frame), before the loop otherwise.
-      const bool new_bvh = f == 0 || animated;
-      reference_scene();
-      const ReferenceModel model =
-          asked_refraction == RefractionMethod::kReference ? ReferenceModel::kMatched : ReferenceModel::kFull;
-      RefractionReference r =
-          render_refraction_reference(*reference, render_mats, light, environment, camera, model);
-      image = std::move(r.image);
-      report["ms"] = {
-          {"bvh_build", r.build_ms}, {"trace", r.trace_ms}, {"shadow", r.shadow_ms}, {"shade", r.shade_ms}};
-      const double bvh_ms = new_bvh ? reference->build_ms() : 0.0;
-      finish_frame(
-          f, ms_since(frame_start) + (f == 0 && !animated ? bvh_ms : 0.0), pose_ms,
-          {{"bvh_build", bvh_ms}, {"trace", r.trace_ms}, {"shadow", r.shadow_ms}, {"shade", r.shade_ms}});
-      for (const auto& [name, ms] : frames.back()["stages"].items())
-        stage_ms[name].push_back(ms.get<double>());
-    }
-    report["device"] = "host (Embree)";
-  } else {
-    const auto wait_start = Clock::now();
-    PreparedRuntime<FrameRenderer> prepared = background.get();
-    const double wait_ms = ms_since(wait_start);
-    if (tty) fmt::print(stderr, "\r{:<60}\rrendering...", "");
-    if (!animated) prepared.engine->set_scene(soup, materials);
-    prepared.engine->set_environment(environment);
-    double precompute_ms = 0.0;
-    const bool image_space = options.refraction.method == RefractionMethod::kImageSpace;
-    if (image_space && !animated) {
-      // Wyman's d_N, ray cast once per scene as the paper precomputes it offline.
-      const auto start = Clock::now();
-      prepared.engine->set_inward_distances(
-          inward_distances(*reference_scene(), soup, materials, vertex_normals(soup)));
-      precompute_ms = ms_since(start);
-    }
-    HostTransmittance exact;
-    if (options.shadows == ShadowMethod::kReference)
-      exact = [&](std::span<const SurfaceSample> s) {
-        return reference_transmittance(*reference_scene(), light, s);
-      };
-    if (args.error_target) {
-      // The grids are chosen on frame 0 (an animated scene's `soup` is its frame 0).
-      if (animated) {
-        prepared.engine->set_scene(soup, materials);
-        if (image_space)
-          prepared.engine->set_inward_distances(
-              inward_distances(*reference_scene(), soup, materials, vertex_normals(soup)));
-      }
-      target = choose_render_grids(*prepared.engine, *reference_scene(), render_mats, light, environment,
-                                   scene.camera, soup.anchor, bounds, width, height, *args.error_target,
-                                   &options, [&](const std::string& line) {
-                                     if (tty) fmt::print(stderr, "\r{:<60}\rerror target: {}", "", line);
-                                   });
-      if (tty) fmt::print(stderr, "\r{:<60}\rrendering...", "");
-    }
-    for (uint32_t f = 0; f < args.frames; ++f) {
-      progress(f);
-      // Host posing, the upload and vertex normals (set_scene), and what the frame's method needs of the
-      // new pose on the host: the exact shadows' BVH, image-space refraction's d_N.
-      double pose_ms = 0.0;
-      if (animated) {
-        const auto pose_start = Clock::now();
-        pose(f);
-        prepared.engine->set_scene(posed, materials);
-        if (options.shadows == ShadowMethod::kReference) reference_scene();
-        if (image_space)
-          prepared.engine->set_inward_distances(
-              inward_distances(*reference_scene(), posed, materials, vertex_normals(posed)));
-        pose_ms = ms_since(pose_start);
-      }
-      RenderedFrame frame = prepared.engine->render(light, camera, options, exact, &stats);
-      image = std::move(frame.image);
-      samples = std::move(frame.samples);
-      transmittance = std::move(frame.transmittance);
-      paths = std::move(frame.paths);
-      nlohmann::json frame_stages = nlohmann::json::object();
-      for (const auto& [name, ms] : stats.stage_ms) {
-        frame_stages[name] = ms;
-        stage_ms[name].push_back(ms);
-      }
-      finish_frame(f, stats.frame_ms, pose_ms, frame_stages);
-    }
-    if (target) {
-      // The saving is measured: the frame on the fixed grids, rendered twice (the first grows the buffers).
-      RenderOptions fixed = options;
-      fixed.keep_samples = false;
-      if (target->refraction) fixed.refraction.resolution = kRenderTargetHighest;
-      if (target->shadows) fixed.shadow_resolution = kRenderTargetHighest;
-      for (int i = 0; i < 2; ++i) prepared.engine->render(light, camera, fixed, exact, &fixed_stats);
-    }
-    nlohmann::json stages = nlohmann::json::object();
-    for (const auto& [name, ms] : stage_ms) stages[name] = median(ms);
-    report["device"] = prepared.cl->device().label();
-    report["driver"] = prepared.cl->device().driver_version;
-    report["ms"] = {{"stages", stages},
-                    {"host", stats.host_ms},
-                    {"runtime", prepared.runtime_ms},
-                    {"programs", prepared.programs_ms},
-                    {"wait", wait_ms}};
-    if (precompute_ms > 0.0) report["ms"]["inward_distances"] = precompute_ms;
-    if (options.shadows != ShadowMethod::kNone) {
-      report["light_grid"] = {
-          {"kind", stats.light.projective() ? "frustum" : "orthographic"},
-          {"dims", {stats.light.grid.dims.x, stats.light.grid.dims.y, stats.light.grid.dims.z}},
-          {"describe", stats.light.describe()},
-          {"triangles", stats.light_triangles},
-          {"device_bytes", stats.device_bytes}};
-      if (options.shadows == ShadowMethod::kVoxel) report["mode"] = raster_mode_name(options.mode);
-    }
-    if (is_voxel_refraction(options.refraction.method)) {
-      const glm::uvec3 d = stats.refraction_grid.dims;
-      report["refraction_grid"] = {{"dims", {d.x, d.y, d.z}},
-                                   {"voxel_size", stats.refraction_grid.voxel_size},
-                                   {"device_bytes", stats.refraction_bytes}};
-    }
-    if (args.profile) fmt::print("{}\n", prepared.cl->profiler().table());
+  const auto wait_start = Clock::now();
+  PreparedRuntime<FrameRenderer> prepared = background.get();
+  const double wait_ms = ms_since(wait_start);
+  if (tty) fmt::print(stderr, "\r{:<60}\r{}...", "", reference_only ? "tracing the reference" : "rendering");
+  prepared.engine->set_environment(environment);
+  // The scene's upload and the techniques' per-scene setup (image-space: Wyman's d_N, ray cast once per
+  // scene as the paper precomputes it offline).
+  double scene_setup_ms = 0.0;
+  if (!animated) {
+    const auto start = Clock::now();
+    prepared.engine->set_scene(soup, materials, &scene_reference());
+    scene_setup_ms = ms_since(start);
   }
+  if (args.error_target) {
+    // The grids are chosen on frame 0 (an animated scene's `soup` is its frame 0).
+    if (animated) prepared.engine->set_scene(soup, materials, &scene_reference());
+    target = choose_render_grids(*prepared.engine, *reference_scene(), render_mats, light, environment,
+                                 scene.camera, soup.anchor, bounds, width, height, *args.error_target,
+                                 &options, [&](const std::string& line) {
+                                   if (tty) fmt::print(stderr, "\r{:<60}\rerror target: {}", "", line);
+                                 });
+    if (tty) fmt::print(stderr, "\r{:<60}\rrendering...", "");
+  }
+  for (uint32_t f = 0; f < args.frames; ++f) {
+    progress(f);
+    // Host posing, the upload and vertex normals and the techniques' per-scene setup (set_scene: e.g.
+    // image-space refraction's d_N), and the exact shadows' BVH of the new pose.
+    double pose_ms = 0.0;
+    if (animated) {
+      const auto pose_start = Clock::now();
+      pose(f);
+      prepared.engine->set_scene(posed, materials, &scene_reference());
+      // The exact shadows' BVH is built while posing; a host-finished frame (the references) builds its
+      // own inside the frame, where it is counted.
+      if (options.shadows == ShadowMethod::kReference && !reference_only) reference_scene();
+      pose_ms = ms_since(pose_start);
+    }
+    RenderedFrame frame = prepared.engine->render(light, camera, options, &stats);
+    image = std::move(frame.image);
+    samples = std::move(frame.samples);
+    transmittance = std::move(frame.transmittance);
+    paths = std::move(frame.paths);
+    nlohmann::json frame_stages = nlohmann::json::object();
+    for (const auto& [name, ms] : stats.stage_ms) {
+      frame_stages[name] = ms;
+      stage_ms[name].push_back(ms);
+    }
+    finish_frame(f, stats.frame_ms, pose_ms, frame_stages);
+  }
+  if (target) {
+    // The saving is measured: the frame on the fixed grids, rendered twice (the first grows the buffers).
+    RenderOptions fixed = options;
+    fixed.keep_samples = false;
+    if (target->refraction) fixed.refraction.resolution = kRenderTargetHighest;
+    if (target->shadows) fixed.shadow_resolution = kRenderTargetHighest;
+    for (int i = 0; i < 2; ++i) prepared.engine->render(light, camera, fixed, &fixed_stats);
+  }
+  nlohmann::json stages = nlohmann::json::object();
+  for (const auto& [name, ms] : stage_ms) stages[name] = median(ms);
+  // The references finish the frame on the host: the device only holds the scene.
+  report["device"] = reference_only ? "host (Embree)" : prepared.cl->device().label();
+  if (!reference_only) report["driver"] = prepared.cl->device().driver_version;
+  report["ms"] = {{"stages", stages},
+                  {"host", stats.host_ms},
+                  {"runtime", prepared.runtime_ms},
+                  {"programs", prepared.programs_ms},
+                  {"wait", wait_ms}};
+  if (!animated) report["ms"]["scene_setup"] = scene_setup_ms;
+  shadow_description = prepared.engine->shadow_technique(options.shadows).describe(stats, options);
+  refraction_description =
+      prepared.engine->refraction_technique(options.refraction.method).describe(stats, options);
+  report.update(shadow_description.report);
+  report.update(refraction_description.report);
+  if (args.profile) fmt::print("{}\n", prepared.cl->profiler().table());
   report["ms"]["load"] = load_ms;
   report["ms"]["frame"] = frame_ms.back();
   report["ms"]["frame_median"] = median(frame_ms);
@@ -458,27 +402,11 @@ int run_render(const RenderArgs& args) {
   if (!args.quiet) {
     fmt::print("input      {} ({} triangles)\n", scene.source, soup.triangle_count());
     fmt::print("device     {}\n", report["device"].get<std::string>());
-    fmt::print("shadows    {}", report["shadows"].get<std::string>());
-    if (options.shadows == ShadowMethod::kVoxel && !reference_only)
-      fmt::print(" ({} mode)", raster_mode_name(options.mode));
-    fmt::print("\n");
-    fmt::print("refraction {}", report["refraction"].get<std::string>());
-    if (report.contains("refraction_grid"))
-      fmt::print(" (grid {}x{}x{}, {} step, {} normals, {:.1f} MiB)", stats.refraction_grid.dims.x,
-                 stats.refraction_grid.dims.y, stats.refraction_grid.dims.z,
-                 step_rule_info(options.refraction.step).name,
-                 normal_kind_info(options.refraction.normals).name,
-                 double(stats.refraction_bytes) / (1 << 20));
-    else if (options.refraction.method == RefractionMethod::kDistanceMaps)
-      fmt::print(" ({} layers + environment, {}x{} texels per cube face, at most {} interfaces)",
-                 options.refraction.layers, options.refraction.layer_res, options.refraction.layer_res,
-                 options.refraction.max_events);
-    else if (asked_refraction != options.refraction.method)
-      fmt::print(" (the scene has no dielectric)");
-    fmt::print("\n");
-    if (report.contains("light_grid"))
-      fmt::print("light grid {}, {} triangles from the light, {:.1f} MiB\n", stats.light.describe(),
-                 stats.light_triangles, double(stats.device_bytes) / (1 << 20));
+    fmt::print("shadows    {}{}\n", report["shadows"].get<std::string>(), shadow_description.suffix);
+    fmt::print("refraction {}{}{}\n", report["refraction"].get<std::string>(), refraction_description.suffix,
+               asked_refraction != options.refraction.method ? " (the scene has no dielectric)" : "");
+    for (const std::string& line : shadow_description.lines) fmt::print("{}\n", line);
+    for (const std::string& line : refraction_description.lines) fmt::print("{}\n", line);
     std::string stages;
     for (const auto& [name, ms] : stage_ms)
       if (median(ms) > 0.0)

@@ -1,17 +1,18 @@
-// One rendered frame with transparent shadows, all on the device: fit the light's grid to what the camera
-// can see, voxelize the casters from the light and accumulate transmittance (voxel, uniform), or rasterize
-// light-space maps (filter, opaque); rasterize the camera's visibility buffer and resolve it; look up each
-// receiver's transmittance; shade. Only the image (and, on request, the samples and their transmittance for
-// metrics) is read back. A deforming scene calls set_scene every frame: nothing is precomputed.
+// One rendered frame through the technique seam (render/technique.h), with no switch over methods: the
+// shadow technique builds its light-space structure; the camera's visibility buffer is rasterized and
+// resolved into the primary samples; the refraction technique traces every pixel's path to its end; the
+// shadow technique looks up the transmittance at the ends; shade. A technique that finishes the frame on the
+// host (the Embree references) replaces the last four steps. Only the image (and, on request, the samples,
+// their transmittance and the paths for metrics) is read back. A deforming scene calls set_scene every
+// frame; the techniques redo their per-scene setup there.
 #pragma once
 
 #include <glm/glm.hpp>
 
 #include <cstdint>
-#include <functional>
 #include <map>
 #include <memory>
-#include <span>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,47 +22,16 @@
 #include "core/triangle_soup.h"
 #include "render/camera_frame.h"
 #include "render/dielectric_pixels.h"
-#include "render/distance_map_refraction.h"
 #include "render/environment_map.h"
 #include "render/image_rgba.h"
-#include "render/image_space_refraction.h"
-#include "render/light_frame.h"
-#include "render/light_space_maps.h"
 #include "render/refraction_method.h"
+#include "render/scene_reference.h"
 #include "render/shadow_method.h"
-#include "render/transparent_shadow_map.h"
+#include "render/technique.h"
 #include "render/visibility_rasterizer.h"
-#include "render/voxel_refraction.h"
 #include "voxelize/device_mesh.h"
 
 namespace voxr {
-
-struct RenderOptions {
-  ShadowMethod shadows = ShadowMethod::kVoxel;
-  uint32_t shadow_resolution = 256;       // columns along the longer side of the light's grid (and its slabs)
-  RasterMode mode = RasterMode::kCenter;  // voxel: the light voxelizer's rule
-  float bias = kDefaultShadowBias;        // slabs (or depth-map texels) towards the light
-  float normal_offset = kDefaultNormalOffset;  // columns off the receiver's surface
-  // none, voxel-multi, voxel-two, image-space or distance-maps (the references render on the host:
-  // reference_refraction.h)
-  RefractionOptions refraction;
-  bool keep_samples = false;  // read back the samples, their transmittance and the paths too
-};
-
-// Transmittance computed on the host for samples read back (the Embree reference): one RGB per sample.
-using HostTransmittance = std::function<std::vector<glm::vec3>(std::span<const SurfaceSample>)>;
-
-struct FrameStats {
-  LightFrame light;                        // the light's grid (voxel, uniform, filter, opaque)
-  std::map<std::string, double> stage_ms;  // profiled kernel time by stage
-  double host_ms = 0.0;                    // host work inside the frame: fitting, projecting, the reference
-  double frame_ms = 0.0;                   // wall time of render(), from its start to the image on the host
-  uint64_t device_bytes = 0;               // the shadow method's grid or maps
-  uint64_t light_triangles = 0;            // triangles voxelized or rasterized from the light
-  GridSpec refraction_grid;                // voxel refraction: the scene's grid
-  uint64_t refraction_bytes = 0;  // the refraction method's structure: the voxel grid's channels, the
-                                  // image-space buffers or the distance-map layers
-};
 
 struct RenderedFrame {
   ImageRgba image;
@@ -77,47 +47,60 @@ class FrameRenderer {
   explicit FrameRenderer(ClRuntime& cl);
   ~FrameRenderer();
 
-  // Builds (or loads) every program a frame with `options` runs.
+  // Builds (or loads) every program a frame with `options` runs, and makes its two techniques (registry
+  // factories, render/technique.h) if this renderer has not made them yet.
   void prepare(const RenderOptions& options);
 
   // The scene of the next frames: triangles (anchor-relative; a CPU device reads them in place, so `soup`
   // must stay alive and unchanged until the next set_scene), materials and angle-weighted vertex normals.
-  // Throws voxr::Error for a material id out of range.
-  void set_scene(const TriangleSoup& soup, const std::vector<Material>& materials);
+  // `reference` (optional; must outlive the frames of this scene) is the exact reference the reference
+  // techniques and image-space's d_N ask (reference/embree_reference.h). Every technique made so far redoes
+  // its per-scene setup here (others on their first frame). Throws voxr::Error for a material id out of
+  // range, or what a technique's setup throws (image-space without a reference).
+  void set_scene(const TriangleSoup& soup, const std::vector<Material>& materials,
+                 SceneReference* reference = nullptr);
 
   // What rays leaving the scene see (uploaded once). Without it, a constant environment of the light's
   // ambient colour.
   void set_environment(const EnvironmentMap& environment);
-  // Wyman's d_N per vertex of the scene's soup (inward_distances), needed by image-space refraction.
-  void set_inward_distances(const std::vector<float>& d_n);
 
-  // Renders one frame. `host_transmittance` is required for ShadowMethod::kReference. Throws voxr::Error for
-  // a host-side refraction method (the references).
+  // Renders one frame with options.shadows and options.refraction. Throws voxr::Error when a technique
+  // needs the reference and set_scene was given none, or when a host-finished refraction (the references)
+  // is paired with other shadows than the reference's.
   RenderedFrame render(const RenderLight& light, const CameraFrame& camera, const RenderOptions& options,
-                       const HostTransmittance& host_transmittance = {}, FrameStats* stats = nullptr);
+                       FrameStats* stats = nullptr);
+
+  // The techniques made so far (prepare or the first frame using them), for their device bytes and
+  // descriptions. Throws InternalError for one not made.
+  const ShadowTechnique& shadow_technique(ShadowMethod method) const;
+  const RefractionTechnique& refraction_technique(RefractionMethod method) const;
 
  private:
   ClRuntime& cl_;
   VisibilityRasterizer rasterizer_;
-  TransparentShadowMap shadow_map_;
-  LightSpaceMaps light_maps_;
-  VoxelRefraction voxel_refraction_;
-  ImageSpaceRefraction image_space_;
-  DistanceMapRefraction distance_maps_;
   DielectricPixels dielectric_pixels_;
+  std::map<ShadowMethod, std::unique_ptr<ShadowTechnique>> shadows_;
+  std::map<RefractionMethod, std::unique_ptr<RefractionTechnique>> refractions_;
+  std::map<const void*, bool> scene_set_;  // technique -> its per-scene setup ran for the current scene
+  FrameContext ctx_;                       // the scene's members; the frame's are set inside render()
   const TriangleSoup* soup_ = nullptr;
   std::vector<Material> materials_;
-  uint32_t material_count_ = 0;
+  std::vector<glm::vec3> host_normals_;
   std::unique_ptr<DeviceMesh> mesh_;
   cl::Buffer materials_buffer_, vertex_normals_;
   GrowingBuffer visibility_, samples_, transmittance_, image_, ends_, paths_;
   cl::Buffer environment_;
   glm::uvec2 environment_size_{0, 0};
+  std::optional<EnvironmentMap> environment_map_;  // host copy for the techniques
   bool environment_given_ = false;
-  bool inward_distances_set_ = false;
   bool scene_has_dielectric_ = false;  // a triangle of the scene is a dielectric: refraction has work
 
   void upload_environment(const EnvironmentMap& environment);
+  ShadowTechnique& shadow(ShadowMethod method);
+  RefractionTechnique& refraction(RefractionMethod method);
+  // Runs the technique's per-scene setup once per scene.
+  template <class Technique>
+  void ensure_scene(Technique& technique);
 };
 
 }  // namespace voxr

@@ -26,11 +26,11 @@
 
 #include "core/error.h"
 #include "core/scene.h"
+#include "eval/render_case.h"
 #include "io/image_file.h"
 #include "metrics/image_metrics.h"
 #include "metrics/refraction_metrics.h"
 #include "metrics/shadow_receivers.h"
-#include "reference/inward_distance.h"
 #include "reference/reference_refraction.h"
 #include "reference/reference_renderer.h"
 #include "reference/reference_scene.h"
@@ -38,7 +38,6 @@
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
 #include "render/shade_host.h"
-#include "render/vertex_normals.h"
 #include "stability/stability_case.h"
 
 namespace voxr {
@@ -205,30 +204,13 @@ bool finite(const glm::vec3& v) {
 
 // ---- Scenes ----
 
-// A scene built from scene-format JSON (core/scene.h), with everything a renderer and the references need.
-struct StabilityScene {
-  Scene scene;
-  TriangleSoup soup;
-  EnvironmentMap environment;
-  CameraFrame camera;
-  RenderLight light;
-  std::vector<RenderMaterial> materials;
-};
-
-// `json` is a scene file's text; `edit` may change the parsed scene (the light's angle) before it is
-// placed. Throws voxr::Error from parse_scene.
-StabilityScene make_scene(const std::string& name, std::string_view json, const Version& v,
-                          const std::function<void(Scene&)>& edit = {}) {
-  StabilityScene s;
-  s.scene = parse_scene(json, "stability case " + name, ".");
-  if (edit) edit(s.scene);
-  s.soup = take_scene_triangles(s.scene);
-  validate_soup(s.soup, s.scene.source);
-  s.environment = make_environment_map(s.scene.environment);
-  s.camera = make_camera_frame(s.scene.camera, s.soup.anchor, s.soup.bounds(), v.width, v.height);
-  s.light = render_light(s.scene.light, s.environment.mean(), s.soup.anchor);
-  s.materials = render_materials(s.scene.materials);
-  return s;
+// A case built from scene-format JSON (core/scene.h): `edit` may change the parsed scene (the light's angle)
+// before it is placed (eval/render_case.h). Throws voxr::Error from parse_scene.
+std::unique_ptr<RenderCase> make_scene(const std::string& name, std::string_view json, const Version& v,
+                                       const std::function<void(Scene&)>& edit = {}) {
+  Scene scene = parse_scene(json, "stability case " + name, ".");
+  if (edit) edit(scene);
+  return std::make_unique<RenderCase>(std::move(scene), v.width, v.height);
 }
 
 // A floor (opaque), a low opaque box and a leaf (sheet) casting onto it: the grazing cases' scene.
@@ -484,21 +466,21 @@ enum class SheetMeasures { kNone, kAcneAndLeaks };
 // transmittance at the same samples, non-finite pixels (image or transmittance; must be 0), and for the
 // sheet case acne (transmittance RMSE over the receivers on the lit leaf, exactly lit there) and leaks (the
 // mean transmittance, largest channel, of floor receivers the exact shadow leaves fully dark).
-std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::string& name,
-                                          const StabilityScene& s, SheetMeasures sheet) {
+std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::string& name, RenderCase& s,
+                                          SheetMeasures sheet) {
   const Version v = version(ctx.full);
   FrameRenderer renderer(ctx.cl);
-  renderer.set_scene(s.soup, s.scene.materials);
+  renderer.set_scene(s.soup(), s.materials());
   RenderOptions base;
   base.shadows = ShadowMethod::kNone;
   base.keep_samples = true;
   renderer.prepare(base);
-  const RenderedFrame primary = renderer.render(s.light, s.camera, base);
-  const ReferenceScene reference(s.soup, s.scene.materials);
-  const std::vector<glm::vec3> exact = reference_transmittance(reference, s.light, primary.samples);
+  const RenderedFrame primary = renderer.render(s.light(), s.camera(), base);
+  const ReferenceScene& reference = s.reference().scene();
+  const std::vector<glm::vec3> exact = reference_transmittance(reference, s.light(), primary.samples);
   const ImageRgba exact_image =
-      shade_samples(primary.samples, exact, s.materials, s.light, v.width, v.height);
-  const std::vector<uint8_t> mask = shadow_receivers(primary.samples, s.materials, s.light);
+      shade_samples(primary.samples, exact, s.render_materials(), s.light(), v.width, v.height);
+  const std::vector<uint8_t> mask = shadow_receivers(primary.samples, s.render_materials(), s.light());
   const uint64_t receivers = uint64_t(std::count(mask.begin(), mask.end(), uint8_t(1)));
   if (receivers == 0) fail("rendering_stability.cpp: case {} has no visible receiver", name);
   // The sheet case's two regions.
@@ -506,9 +488,9 @@ std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::stri
   if (sheet == SheetMeasures::kAcneAndLeaks) {
     for (size_t i = 0; i < mask.size(); ++i) {
       const uint32_t m = primary.samples[i].material;
-      leaf[i] = mask[i] && s.scene.materials[m].kind == MaterialKind::kSheet;
+      leaf[i] = mask[i] && s.materials()[m].kind == MaterialKind::kSheet;
       const float e = std::max(exact[i].x, std::max(exact[i].y, exact[i].z));
-      dark[i] = mask[i] && s.scene.materials[m].kind == MaterialKind::kOpaque && e == 0.0f;
+      dark[i] = mask[i] && s.materials()[m].kind == MaterialKind::kOpaque && e == 0.0f;
     }
     if (std::count(leaf.begin(), leaf.end(), uint8_t(1)) == 0 ||
         std::count(dark.begin(), dark.end(), uint8_t(1)) == 0)
@@ -524,7 +506,7 @@ std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::stri
     o.shadow_resolution = v.shadow_resolution;
     o.keep_samples = true;
     renderer.prepare(o);
-    const RenderedFrame frame = renderer.render(s.light, s.camera, o);
+    const RenderedFrame frame = renderer.render(s.light(), s.camera(), o);
     const TransmittanceError e = transmittance_error(frame.transmittance, exact, mask, 0.05);
     rows.push_back(measured_row(
         name, m.label, "transmittance RMSE over visible receivers", Measure::kShadowRmse, e.rmse, ctx.full,
@@ -574,7 +556,7 @@ StabilityCase shadow_case(std::string name, std::string description, std::string
   c.name = name;
   c.description = std::move(description);
   c.run = [name, json, edit, sheet](StabilityContext& ctx) {
-    return run_shadow_case(ctx, name, make_scene(name, json, version(ctx.full), edit), sheet);
+    return run_shadow_case(ctx, name, *make_scene(name, json, version(ctx.full), edit), sheet);
   };
   return c;
 }
@@ -598,25 +580,20 @@ uint64_t tir_pixels(std::span<const RefractionPath> paths) {
 // mismatch share against the matched reference, non-finite pixels (must be 0); with `tir`, whether the
 // reference has total internal reflection (hard: at least one pixel) and the share of the reference's TIR
 // pixels where the method's path reflects totally too.
-std::vector<StabilityRow> run_refraction_case(StabilityContext& ctx, const std::string& name,
-                                              const StabilityScene& s, bool tir) {
+std::vector<StabilityRow> run_refraction_case(StabilityContext& ctx, const std::string& name, RenderCase& s,
+                                              bool tir) {
   const Version v = version(ctx.full);
-  const ReferenceScene reference(s.soup, s.scene.materials);
+  const ReferenceScene& reference = s.reference().scene();
   const RefractionReference exact = render_refraction_reference(
-      reference, s.materials, s.light, s.environment, s.camera, ReferenceModel::kMatched);
+      reference, s.render_materials(), s.light(), s.environment(), s.camera(), ReferenceModel::kMatched);
   std::vector<StabilityRow> rows;
   const uint64_t reference_tir = tir_pixels(exact.paths);
   if (tir)
     rows.push_back(row(name, "reference", "pixels with total internal reflection", double(reference_tir), 1.0,
                        true, "the matched reference's paths: the scene shows TIR"));
   FrameRenderer renderer(ctx.cl);
-  renderer.set_scene(s.soup, s.scene.materials);
-  renderer.set_environment(s.environment);
-  renderer.set_inward_distances(
-      inward_distances(reference, s.soup, s.scene.materials, vertex_normals(s.soup)));
-  const HostTransmittance exact_shadows = [&](std::span<const SurfaceSample> samples) {
-    return reference_transmittance(reference, s.light, samples);
-  };
+  renderer.set_scene(s.soup(), s.materials(), &s.reference());
+  renderer.set_environment(s.environment());
   Picture picture;
   for (const RefractionMethodInfo& m : refraction_methods()) {
     const std::string method(m.name);
@@ -628,7 +605,7 @@ std::vector<StabilityRow> run_refraction_case(StabilityContext& ctx, const std::
     RenderedFrame frame;
     try {
       renderer.prepare(o);
-      frame = renderer.render(s.light, s.camera, o, exact_shadows);
+      frame = renderer.render(s.light(), s.camera(), o);
     } catch (const Error& e) {
       const double nan = std::numeric_limits<double>::quiet_NaN();
       rows.push_back(row(name, method, "image RMSE vs matched reference", nan, 0.0, false, e.what()));
@@ -666,7 +643,7 @@ StabilityCase refraction_case(std::string name, std::string description, std::st
   c.name = name;
   c.description = std::move(description);
   c.run = [name, json, tir](StabilityContext& ctx) {
-    return run_refraction_case(ctx, name, make_scene(name, json, version(ctx.full)), tir);
+    return run_refraction_case(ctx, name, *make_scene(name, json, version(ctx.full)), tir);
   };
   return c;
 }

@@ -29,14 +29,13 @@
 
 #include "core/animation.h"
 #include "core/scene.h"
-#include "reference/inward_distance.h"
+#include "reference/embree_reference.h"
 #include "reference/reference_refraction.h"
 #include "reference/reference_renderer.h"
 #include "reference/reference_scene.h"
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
-#include "render/vertex_normals.h"
 #include "stability/stability_case.h"
 
 namespace voxr {
@@ -239,14 +238,9 @@ std::vector<StabilityRow> moving_glass(StabilityContext& ctx) {
     for (size_t f = 0; f < frames.soups.size(); ++f) {
       const TriangleSoup& soup = frames.soups[f];
       const ReferenceScene& exact = *scenes[f];
-      renderer.set_scene(soup, frames.scene.materials);
-      if (options.refraction.method == RefractionMethod::kImageSpace)
-        renderer.set_inward_distances(
-            inward_distances(exact, soup, frames.scene.materials, vertex_normals(soup)));
-      const HostTransmittance transmittance = [&](std::span<const SurfaceSample> samples) {
-        return reference_transmittance(exact, frames.light, samples);
-      };
-      images.push_back(renderer.render(frames.light, frames.camera, options, transmittance).image);
+      EmbreeReference scene_reference(exact, soup, frames.scene.materials);
+      renderer.set_scene(soup, frames.scene.materials, &scene_reference);
+      images.push_back(renderer.render(frames.light, frames.camera, options).image);
     }
     add_rows(rows, ctx, name, bound, flicker(images, reference), scene_motion);
   }

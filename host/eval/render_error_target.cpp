@@ -1,4 +1,4 @@
-#include "cli/render_error_target.h"
+#include "eval/render_error_target.h"
 
 #include <fmt/format.h>
 
@@ -8,9 +8,8 @@
 #include "core/error.h"
 #include "metrics/image_metrics.h"
 #include "reference/reference_refraction.h"
-#include "reference/reference_renderer.h"
 
-namespace voxr::cli {
+namespace voxr {
 
 RenderTargetChoice choose_render_grids(FrameRenderer& renderer, const ReferenceScene& reference,
                                        const std::vector<RenderMaterial>& materials, const RenderLight& light,
@@ -33,14 +32,7 @@ RenderTargetChoice choose_render_grids(FrameRenderer& renderer, const ReferenceS
   choice.sample_height = std::max(1u, height / 2);
   const CameraFrame sample =
       make_camera_frame(camera, anchor, bounds, choice.sample_width, choice.sample_height);
-  const HostTransmittance exact = [&](std::span<const SurfaceSample> s) {
-    return reference_transmittance(reference, light, s);
-  };
-  const auto frame = [&](const RenderOptions& o) {
-    return renderer
-        .render(light, sample, o, o.shadows == ShadowMethod::kReference ? exact : HostTransmittance{})
-        .image;
-  };
+  const auto frame = [&](const RenderOptions& o) { return renderer.render(light, sample, o).image; };
   // The reference image on the sample: the matched refraction reference, or without refraction the device
   // frame with exact shadows (the same visibility buffer: the shadows' error alone).
   RenderOptions exact_shadows = *options;
@@ -84,4 +76,4 @@ RenderTargetChoice choose_render_grids(FrameRenderer& renderer, const ReferenceS
   return choice;
 }
 
-}  // namespace voxr::cli
+}  // namespace voxr

@@ -20,7 +20,7 @@
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 
-namespace voxr::cli {
+namespace voxr {
 
 struct RenderTargetChoice {
   std::optional<ResolutionChoice> refraction, shadows;  // absent: that part has no grid or is exact
@@ -42,4 +42,4 @@ RenderTargetChoice choose_render_grids(FrameRenderer& renderer, const ReferenceS
                                        uint32_t height, double target, RenderOptions* options,
                                        const std::function<void(const std::string&)>& progress);
 
-}  // namespace voxr::cli
+}  // namespace voxr
