@@ -1,6 +1,7 @@
 #include "cl/cl_runtime.h"
 
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -176,6 +177,9 @@ cl::Buffer ClRuntime::in_place_buffer(void* data, uint64_t bytes, const std::str
 }
 
 void ClRuntime::sync_to_host(cl::Buffer& buffer, uint64_t bytes, const std::string& name) {
+  const auto start = Clock::now();
+  const double cpu_start = thread_cpu_ms();
+  ++syncs_;
   try {
     void* mapped = queue_.enqueueMapBuffer(buffer, CL_TRUE, CL_MAP_READ, 0, bytes);
     queue_.enqueueUnmapMemObject(buffer, mapped);
@@ -183,6 +187,8 @@ void ClRuntime::sync_to_host(cl::Buffer& buffer, uint64_t bytes, const std::stri
   } catch (const cl::Error& e) {
     throw Error(describe_cl_error(e, name));
   }
+  sync_ms_ += ms_since(start);
+  sync_cpu_ms_ += thread_cpu_ms() - cpu_start;
 }
 
 bool ClRuntime::host_buffer(cl::Buffer& buffer, const void* data, uint64_t bytes, const std::string& what,
@@ -213,6 +219,9 @@ void ClRuntime::fill_zero(cl::Buffer& buffer, uint64_t bytes, const std::string&
 
 void ClRuntime::upload(cl::Buffer& buffer, const void* data, uint64_t bytes, const std::string& name) {
   if (bytes == 0) return;
+  const auto start = Clock::now();
+  const double cpu_start = thread_cpu_ms();
+  ++syncs_;
   try {
     cl::Event event;
     queue_.enqueueWriteBuffer(buffer, CL_TRUE, 0, bytes, data, nullptr, &event);
@@ -220,11 +229,16 @@ void ClRuntime::upload(cl::Buffer& buffer, const void* data, uint64_t bytes, con
   } catch (const cl::Error& e) {
     throw Error(describe_cl_error(e, name));
   }
+  sync_ms_ += ms_since(start);
+  sync_cpu_ms_ += thread_cpu_ms() - cpu_start;
 }
 
 void ClRuntime::download(const cl::Buffer& buffer, void* data, uint64_t bytes, const std::string& name,
                          uint64_t offset) {
   if (bytes == 0) return;
+  const auto start = Clock::now();
+  const double cpu_start = thread_cpu_ms();
+  ++syncs_;
   try {
     cl::Event event;
     queue_.enqueueReadBuffer(buffer, CL_TRUE, offset, bytes, data, nullptr, &event);
@@ -232,15 +246,40 @@ void ClRuntime::download(const cl::Buffer& buffer, void* data, uint64_t bytes, c
   } catch (const cl::Error& e) {
     throw Error(describe_cl_error(e, name));
   }
+  sync_ms_ += ms_since(start);
+  sync_cpu_ms_ += thread_cpu_ms() - cpu_start;
+}
+
+void ClRuntime::download_later(const cl::Buffer& buffer, void* data, uint64_t bytes, const std::string& name,
+                               uint64_t offset) {
+  if (bytes == 0) return;
+  try {
+    cl::Event event;
+    queue_.enqueueReadBuffer(buffer, CL_FALSE, offset, bytes, data, nullptr, &event);
+    profiler_.record(name, event);
+  } catch (const cl::Error& e) {
+    throw Error(describe_cl_error(e, name));
+  }
+}
+
+double ClRuntime::thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
 }
 
 void ClRuntime::finish(const std::string& context) {
+  const auto start = Clock::now();
+  const double cpu_start = thread_cpu_ms();
+  ++syncs_;
   try {
     queue_.finish();
     profiler_.resolve();
   } catch (const cl::Error& e) {
     throw Error(describe_cl_error(e, context));
   }
+  sync_ms_ += ms_since(start);
+  sync_cpu_ms_ += thread_cpu_ms() - cpu_start;
 }
 
 }  // namespace voxr

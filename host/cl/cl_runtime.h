@@ -81,8 +81,23 @@ class ClRuntime {
   void upload(cl::Buffer& buffer, const void* data, uint64_t bytes, const std::string& name);
   void download(const cl::Buffer& buffer, void* data, uint64_t bytes, const std::string& name,
                 uint64_t offset = 0);
+  // Enqueues a read into `data` without waiting: `data` must stay alive and untouched until the next
+  // synchronisation (finish or a blocking transfer), after which it holds the bytes. Lets several small
+  // counts travel back with one wait.
+  void download_later(const cl::Buffer& buffer, void* data, uint64_t bytes, const std::string& name,
+                      uint64_t offset = 0);
   // Waits for the queue, turns asynchronous failures into voxr::Error, resolves profiling events.
   void finish(const std::string& context = "running kernels");
+
+  // Host synchronisations so far: every finish, blocking upload or download and map (each waits for the
+  // queue), and the milliseconds the host spent blocked in them. A frame's count is the difference.
+  uint64_t syncs() const { return syncs_; }
+  double sync_ms() const { return sync_ms_; }
+  // CPU time of the calling thread inside those waits (thread_cpu_ms's clock).
+  double sync_cpu_ms() const { return sync_cpu_ms_; }
+  // CPU time the calling thread has used, in milliseconds: host work measured apart from the device's
+  // threads, which share the cores on a CPU device.
+  static double thread_cpu_ms();
 
  private:
   template <typename T>
@@ -105,6 +120,9 @@ class ClRuntime {
   std::map<std::string, cl::Program> programs_;  // by file and build options
   ProgramCache program_cache_;
   double build_ms_ = 0.0;
+  uint64_t syncs_ = 0;
+  double sync_ms_ = 0.0;
+  double sync_cpu_ms_ = 0.0;
 };
 
 }  // namespace voxr

@@ -311,6 +311,7 @@ int run_render(const RenderArgs& args) {
                   {"programs", prepared.programs_ms},
                   {"wait", wait_ms}};
   if (!animated) report["ms"]["scene_setup"] = scene_setup_ms;
+  report["host_syncs"] = stats.host_syncs;  // waits for the device queue in the last frame
   shadow_description = prepared.engine->shadow_technique(options.shadows).describe(stats, options);
   refraction_description =
       prepared.engine->refraction_technique(options.refraction.method).describe(stats, options);
@@ -430,8 +431,8 @@ int run_render(const RenderArgs& args) {
         frame_ms.size(), frame_ms.size() == 1 ? "" : "s", report["ms"]["frame_min"].get<double>(),
         report["ms"]["frame_max"].get<double>(), report["fps_rendered"].get<double>());
     if (!stages.empty())
-      fmt::print("stages ms  {} (medians{}; host {:.2f})\n", stages,
-                 reference_only ? "" : " of the device frame", stats.host_ms);
+      fmt::print("stages ms  {} (medians{}; host {:.2f}; {} host syncs)\n", stages,
+                 reference_only ? "" : " of the device frame", stats.host_ms, stats.host_syncs);
     if (target) {
       const auto line = [](const char* what, const ResolutionChoice& c, double budget) {
         std::string trials;

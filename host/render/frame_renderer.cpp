@@ -119,6 +119,7 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
   FrameStats& st = stats ? *stats : local;
   st = FrameStats{};
   const auto profiled_before = cl_.profiler().stats();
+  const uint64_t syncs_before = cl_.syncs();
 
   ShadowTechnique& shadows = shadow(options.shadows);
   RefractionTechnique& refract = refraction(options.refraction.method);
@@ -193,27 +194,28 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
                  materials_buffer_, cl_uint(ctx_.material_count), light, environment_,
                  cl_uint(environment_size_.x), cl_uint(environment_size_.y), image);
     }
+    // Everything read back travels with the frame's one last wait.
     frame.image = ImageRgba(camera.width, camera.height);
-    cl_.download(image, frame.image.pixels.data(), pixels * 16, "download image");
+    cl_.download_later(image, frame.image.pixels.data(), pixels * 16, "download image");
+    std::vector<glm::vec4> t4;
     if (options.keep_samples) {
       frame.samples.resize(pixels);
-      cl_.download(*ends, frame.samples.data(), pixels * sizeof(SurfaceSample), "download samples");
+      cl_.download_later(*ends, frame.samples.data(), pixels * sizeof(SurfaceSample), "download samples");
       frame.paths.resize(pixels);
-      cl_.download(*paths, frame.paths.data(), pixels * sizeof(RefractionPath), "download paths");
-      std::vector<glm::vec4> t4(pixels);
-      cl_.download(transmittance, t4.data(), pixels * 16, "download transmittance");
-      cl_.finish("rendering a frame");
-      frame.transmittance.resize(pixels);
-      for (size_t i = 0; i < pixels; ++i) frame.transmittance[i] = glm::vec3(t4[i]);
-    } else {
-      cl_.finish("rendering a frame");
+      cl_.download_later(*paths, frame.paths.data(), pixels * sizeof(RefractionPath), "download paths");
+      t4.resize(pixels);
+      cl_.download_later(transmittance, t4.data(), pixels * 16, "download transmittance");
     }
+    cl_.finish("rendering a frame");
+    frame.transmittance.resize(t4.size());
+    for (size_t i = 0; i < t4.size(); ++i) frame.transmittance[i] = glm::vec3(t4[i]);
   }
   ctx_.camera = nullptr;
   ctx_.dielectric = nullptr;
   ctx_.light = nullptr;
   ctx_.stats = nullptr;
   st.frame_ms = ms_since(start);
+  st.host_syncs = cl_.syncs() - syncs_before;
   const Profiler::Split split = cl_.profiler().since(profiled_before);
   for (const auto& [name, ms] : split.stage_ms) st.stage_ms[name] = ms;
   st.stage_ms["upload"] = split.upload_ms;

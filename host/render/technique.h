@@ -55,6 +55,7 @@ struct FrameStats {
   std::map<std::string, double> stage_ms;  // profiled kernel time by stage; host references add theirs
   double host_ms = 0.0;                    // host work inside the frame: fitting, projecting, the reference
   double frame_ms = 0.0;                   // wall time of render(), from its start to the image on the host
+  uint64_t host_syncs = 0;                 // waits for the device queue inside render() (ClRuntime::syncs)
   uint64_t device_bytes = 0;               // the shadow technique's grid or maps
   uint64_t light_triangles = 0;            // triangles voxelized or rasterized from the light
   GridSpec refraction_grid;                // voxel refraction: the scene's grid

@@ -82,7 +82,8 @@ void Voxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Voxelize
                     DeviceVoxelGrid& out, VoxelizeStats* stats) {
   const auto start = Clock::now();
   options.validate();
-  cl_.finish();
+  // Waits first only when the caller asks for the run's own times (each wait is a host synchronisation).
+  if (stats) cl_.finish();
   const auto before = cl_.profiler().stats();
   out.reset(grid, options.result_channels());
   VoxelizeStats local;
@@ -93,6 +94,7 @@ void Voxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Voxelize
         options.mode == RasterMode::kConservative && method_info(options.method).modes;
     solid().run(mesh, grid, *options.solid, conservative_surface, out, local);
   }
+  // Then always: the mesh may be a caller's temporary whose host arrays the kernels read in place.
   cl_.finish("voxelizing");
   local.voxels_set = out.voxels_set;
   local.inside_voxels = out.inside_voxels;

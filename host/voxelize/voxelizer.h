@@ -136,7 +136,8 @@ class Voxelizer {
 
   // Voxelizes an uploaded mesh into `out`, whose buffers are reused when large enough: the surface, then
   // the interior when options.solid is set. Nothing is read back. `stats` (optional) receives counts and
-  // profiled times of this run (upload_ms stays 0: the mesh was uploaded before).
+  // profiled times of this run (upload_ms stays 0: the mesh was uploaded before); without it the run does
+  // not wait for the queue before it starts.
   void run(const DeviceMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options, DeviceVoxelGrid& out,
            VoxelizeStats* stats = nullptr);
 
