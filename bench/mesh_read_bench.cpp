@@ -14,8 +14,8 @@
 #include <string>
 
 #include "bench/bench_meshes.h"
-#include "core/error.h"
 #include "core/mesh_loader.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

@@ -8,10 +8,10 @@
 
 #include "bench_runtime.h"
 #include "cl/cl_runtime.h"
-#include "core/clock.h"
 #include "core/generators.h"
 #include "render/vertex_normals.h"
 #include "render/visibility_rasterizer.h"
+#include "util/clock.h"
 
 namespace voxr {
 namespace {

@@ -12,11 +12,11 @@
 #include <string>
 #include <string_view>
 
-#include "core/error.h"
-#include "core/host_array.h"
 #include "mesh/polygon_mesh.h"
 #include "mesh/polygon_triangulation.h"
-#include "mesh/text_scan.h"
+#include "util/error.h"
+#include "util/host_array.h"
+#include "util/text_scan.h"
 
 namespace voxr::fuzz {
 

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "core/animation.h"
-#include "core/error.h"
 #include "core/scene.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

@@ -26,9 +26,9 @@
 #include <thread>
 #include <vector>
 
-#include "core/error.h"
 #include "mesh/assimp_reader.h"
 #include "test_support.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "cli_support.h"
-#include "core/error.h"
 #include "io/atomic_file.h"
 #include "test_support.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

@@ -10,11 +10,11 @@
 #include <fstream>
 #include <string>
 
-#include "core/error.h"
 #include "core/scene.h"
 #include "io/image_file.h"
 #include "render/environment_map.h"
 #include "test_support.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

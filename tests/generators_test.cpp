@@ -7,10 +7,10 @@
 #include <numbers>
 #include <utility>
 
-#include "core/error.h"
 #include "core/generators.h"
 #include "core/mesh_topology.h"
 #include "core/subdivide.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

@@ -8,9 +8,9 @@
 #include <random>
 #include <string>
 
-#include "core/error.h"
 #include "core/grid_spec.h"
 #include "test_support.h"
+#include "util/error.h"
 #include "voxelize/voxelizer.h"
 
 namespace voxr {

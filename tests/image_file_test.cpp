@@ -9,9 +9,9 @@
 #include <functional>
 #include <string>
 
-#include "core/error.h"
 #include "io/image_file.h"
 #include "test_support.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

@@ -9,9 +9,9 @@
 #include <iterator>
 #include <string>
 
-#include "core/error.h"
 #include "core/mesh_loader.h"
 #include "test_support.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

@@ -16,11 +16,11 @@
 #include <thread>
 #include <vector>
 
-#include "core/error.h"
 #include "core/mesh_loader.h"
 #include "core/mesh_topology.h"
 #include "mesh/polygon_triangulation.h"
 #include "test_support.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

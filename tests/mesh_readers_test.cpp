@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "core/error.h"
 #include "core/mesh_loader.h"
 #include "mesh/mesh_readers.h"
 #include "test_support.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

@@ -11,7 +11,6 @@
 #include <numbers>
 #include <vector>
 
-#include "core/error.h"
 #include "core/generators.h"
 #include "metrics/refraction_metrics.h"
 #include "reference/inward_distance.h"
@@ -21,6 +20,7 @@
 #include "render/render_scene.h"
 #include "render/vertex_normals.h"
 #include "test_support.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

@@ -8,13 +8,13 @@
 #include <cmath>
 #include <vector>
 
-#include "core/error.h"
 #include "core/generators.h"
 #include "reference/reference_renderer.h"
 #include "reference/reference_scene.h"
 #include "render/render_scene.h"
 #include "render/shade_host.h"
 #include "render/vertex_normals.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

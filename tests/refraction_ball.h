@@ -8,13 +8,13 @@
 #include <cmath>
 #include <vector>
 
-#include "core/error.h"
 #include "core/generators.h"
 #include "core/material.h"
 #include "core/triangle_soup.h"
 #include "render/camera_frame.h"
 #include "render/frame_renderer.h"
 #include "render/scene_reference.h"
+#include "util/error.h"
 #include "voxr_layout.h"
 
 #include <gtest/gtest.h>

@@ -2,9 +2,9 @@
 #include <gtest/gtest.h>
 
 #include "core/default_scene.h"
-#include "core/error.h"
 #include "eval/render_case.h"
 #include "render/render_scene.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

@@ -10,9 +10,9 @@
 #include <system_error>
 #include <vector>
 
-#include "core/error.h"
 #include "io/image_file.h"
 #include "metrics/image_metrics.h"
+#include "util/error.h"
 
 namespace voxr::test {
 

@@ -18,7 +18,7 @@
 #include <filesystem>
 #include <string>
 
-#include "render/image_rgba.h"
+#include "util/image_rgba.h"
 
 namespace voxr::test {
 

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "core/error.h"
 #include "core/resolution_search.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

@@ -12,11 +12,11 @@
 #include <string>
 
 #include "core/default_scene.h"
-#include "core/error.h"
 #include "core/generators.h"
 #include "core/mesh_topology.h"
 #include "core/scene.h"
 #include "test_support.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

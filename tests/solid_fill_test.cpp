@@ -13,11 +13,11 @@
 
 #include <fmt/format.h>
 
-#include "core/error.h"
 #include "core/generators.h"
 #include "core/mesh_loader.h"
 #include "core/mesh_topology.h"
 #include "test_support.h"
+#include "util/error.h"
 #include "voxelize/reference_inside.h"
 #include "voxelize/voxelizer.h"
 

@@ -8,8 +8,8 @@
 #include <random>
 #include <string>
 
-#include "core/error.h"
 #include "core/triangle_soup.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {

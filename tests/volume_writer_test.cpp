@@ -17,12 +17,12 @@
 
 #include <fmt/format.h>
 
-#include "core/error.h"
 #include "io/binvox_writer.h"
 #include "io/nrrd_writer.h"
 #include "io/volume_writer.h"
 #include "io/vox_writer.h"
 #include "io/vti_writer.h"
+#include "util/error.h"
 #include "voxr_layout.h"
 
 namespace voxr {

@@ -10,8 +10,8 @@
 
 #include <fmt/format.h>
 
-#include "core/error.h"
 #include "grid/channel_table.h"
+#include "util/error.h"
 
 namespace voxr::view {
 

@@ -2,7 +2,7 @@
 #include <cstdio>
 #include <new>
 
-#include "core/error.h"
+#include "util/error.h"
 #include "view_options.h"
 #include "viewer.h"
 #include "volume_loader.h"

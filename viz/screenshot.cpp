@@ -8,7 +8,7 @@
 
 #include <cctype>
 
-#include "core/error.h"
+#include "util/error.h"
 #include "vtk_messages.h"
 
 namespace voxr::view {

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <vector>
 
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr::view {
 

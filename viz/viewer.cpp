@@ -14,9 +14,9 @@
 
 #include <fmt/format.h>
 
-#include "core/error.h"
 #include "key_style.h"
 #include "screenshot.h"
+#include "util/error.h"
 
 namespace voxr::view {
 

@@ -17,8 +17,8 @@
 #include <optional>
 #include <sstream>
 
-#include "core/error.h"
 #include "grid/channel_table.h"
+#include "util/error.h"
 #include "vtk_messages.h"
 
 namespace voxr::view {

@@ -3,10 +3,10 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "core/error.h"
 #include "core/generators.h"
 #include "core/mesh_loader.h"
 #include "core/subdivide.h"
+#include "util/error.h"
 
 namespace voxr {
 

@@ -5,8 +5,8 @@
 #include <algorithm>
 
 #include "bench/bench_meshes.h"
-#include "bench/median.h"
 #include "core/mesh_topology.h"
+#include "util/median.h"
 #include "voxelize/reference_inside.h"
 #include "voxelize/voxelizer.h"
 

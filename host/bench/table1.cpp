@@ -6,8 +6,8 @@
 #include <map>
 
 #include "bench/bench_meshes.h"
-#include "bench/median.h"
-#include "core/error.h"
+#include "util/error.h"
+#include "util/median.h"
 #include "voxelize/reference_overlap.h"
 #include "voxelize/surface_accuracy.h"
 #include "voxelize/voxelizer.h"

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "cl/embedded_kernels.h"
-#include "core/clock.h"
+#include "util/clock.h"
 
 namespace voxr {
 

@@ -16,7 +16,7 @@
 #include "cl/device.h"
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr {
 

@@ -6,7 +6,7 @@
 #include <cstdlib>
 
 #include "cl/cl_error.h"
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr {
 

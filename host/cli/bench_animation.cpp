@@ -8,19 +8,19 @@
 #include <map>
 #include <sstream>
 
-#include "bench/median.h"
 #include "cl/cl_runtime.h"
 #include "cli/bench_support.h"
 #include "cli/commands.h"
 #include "cli/option_groups.h"
 #include "cli/parse_args.h"
 #include "core/animation.h"
-#include "core/clock.h"
 #include "core/scene.h"
 #include "io/atomic_file.h"
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
+#include "util/clock.h"
+#include "util/median.h"
 
 namespace voxr::cli {
 

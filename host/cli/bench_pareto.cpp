@@ -19,10 +19,10 @@
 #include "cli/openvdb_plugin.h"
 #include "cli/option_groups.h"
 #include "cli/process.h"
-#include "core/error.h"
 #include "core/grid_spec.h"
 #include "io/atomic_file.h"
 #include "metrics/voxel_surface_error.h"
+#include "util/error.h"
 
 namespace voxr::cli {
 

@@ -10,7 +10,6 @@
 #include <limits>
 #include <sstream>
 
-#include "bench/median.h"
 #include "cl/cl_runtime.h"
 #include "cli/bench_support.h"
 #include "cli/commands.h"
@@ -18,8 +17,6 @@
 #include "cli/option_groups_render.h"
 #include "cli/parse_args.h"
 #include "cli/process.h"
-#include "core/clock.h"
-#include "core/error.h"
 #include "core/scene.h"
 #include "eval/render_case.h"
 #include "io/atomic_file.h"
@@ -29,6 +26,9 @@
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
+#include "util/clock.h"
+#include "util/error.h"
+#include "util/median.h"
 
 namespace voxr::cli {
 

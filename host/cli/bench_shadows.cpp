@@ -10,14 +10,12 @@
 #include <fstream>
 #include <sstream>
 
-#include "bench/median.h"
 #include "cl/cl_runtime.h"
 #include "cli/bench_support.h"
 #include "cli/commands.h"
 #include "cli/option_groups.h"
 #include "cli/parse_args.h"
 #include "cli/process.h"
-#include "core/clock.h"
 #include "core/default_scene.h"
 #include "core/scene.h"
 #include "eval/render_case.h"
@@ -29,6 +27,8 @@
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
 #include "render/shade_host.h"
+#include "util/clock.h"
+#include "util/median.h"
 
 namespace voxr::cli {
 

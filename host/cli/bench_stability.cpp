@@ -11,9 +11,9 @@
 #include "cli/bench_support.h"
 #include "cli/commands.h"
 #include "cli/option_groups.h"
-#include "core/error.h"
 #include "io/atomic_file.h"
 #include "stability/stability_suite.h"
+#include "util/error.h"
 
 namespace voxr::cli {
 

@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "bench/median.h"
 #include "cli/process.h"
-#include "core/clock.h"
-#include "core/error.h"
+#include "util/clock.h"
+#include "util/error.h"
+#include "util/median.h"
 
 namespace voxr::cli {
 

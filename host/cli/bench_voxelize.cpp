@@ -10,14 +10,14 @@
 #include <fstream>
 
 #include "bench/bench_meshes.h"
-#include "bench/median.h"
 #include "bench/voxelize_cases.h"
 #include "cl/cl_runtime.h"
 #include "cli/bench_support.h"
 #include "cli/process.h"
-#include "core/clock.h"
 #include "io/atomic_file.h"
 #include "io/volume_writer.h"
+#include "util/clock.h"
+#include "util/median.h"
 #include "voxelize/voxelizer.h"
 
 namespace voxr::cli {

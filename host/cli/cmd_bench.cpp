@@ -8,7 +8,6 @@
 #include <sstream>
 
 #include "bench/bench_meshes.h"
-#include "bench/median.h"
 #include "bench/solid_table.h"
 #include "bench/table1.h"
 #include "bench/voxelize_cases.h"
@@ -18,6 +17,7 @@
 #include "cli/openvdb_plugin.h"
 #include "cli/option_groups.h"
 #include "io/atomic_file.h"
+#include "util/median.h"
 
 namespace voxr::cli {
 

@@ -25,7 +25,6 @@
 #include <memory>
 #include <optional>
 
-#include "bench/median.h"
 #include "cl/cl_runtime.h"
 #include "cli/commands.h"
 #include "cli/frame_pattern.h"
@@ -34,9 +33,7 @@
 #include "cli/parse_args.h"
 #include "cli/prepared_runtime.h"
 #include "core/animation.h"
-#include "core/clock.h"
 #include "core/default_scene.h"
-#include "core/file_extension.h"
 #include "core/scene.h"
 #include "eval/render_case.h"
 #include "eval/render_error_target.h"
@@ -52,6 +49,9 @@
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
 #include "render/shade_host.h"
+#include "util/clock.h"
+#include "util/file_extension.h"
+#include "util/median.h"
 
 namespace voxr::cli {
 

@@ -22,7 +22,6 @@
 #include "cli/parse_args.h"
 #include "cli/prepared_runtime.h"
 #include "cli/process.h"
-#include "core/clock.h"
 #include "core/default_scene.h"
 #include "core/mesh_loader.h"
 #include "core/mesh_topology.h"
@@ -31,6 +30,7 @@
 #include "io/atomic_file.h"
 #include "io/volume_writer.h"
 #include "metrics/voxel_surface_error.h"
+#include "util/clock.h"
 #include "voxelize/voxelizer.h"
 
 namespace voxr::cli {

@@ -12,7 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/process.h"
-#include "core/error.h"
+#include "util/error.h"
 
 namespace {
 

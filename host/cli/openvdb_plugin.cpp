@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "cli/process.h"
-#include "core/error.h"
 #include "peers/openvdb_peer.h"
+#include "util/error.h"
 
 namespace voxr::cli {
 

@@ -1,8 +1,8 @@
 #include "cli/option_groups.h"
 
 #include "cli/parse_args.h"
-#include "core/error.h"
 #include "core/grid_spec.h"
+#include "util/error.h"
 
 namespace voxr::cli {
 

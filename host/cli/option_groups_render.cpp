@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "core/error.h"
 #include "render/shadow_method.h"
+#include "util/error.h"
 
 namespace voxr::cli {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "cl/cl_runtime.h"
-#include "core/clock.h"
+#include "util/clock.h"
 
 namespace voxr::cli {
 

@@ -2,7 +2,7 @@
 // --help. main.cpp hands every `voxr render` and `voxr bench shadows|refraction|stability|animation|pareto`
 // to voxr-render before parsing, so these are never run.
 #include "cli/commands.h"
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr::cli {
 

@@ -7,10 +7,10 @@
 #include <limits>
 #include <numbers>
 
-#include "core/error.h"
-#include "core/json_reader.h"
 #include "core/scene.h"
-#include "mesh/text_scan.h"
+#include "util/error.h"
+#include "util/json_reader.h"
+#include "util/text_scan.h"
 
 namespace voxr {
 

@@ -7,8 +7,8 @@
 #include <numbers>
 #include <random>
 
-#include "core/error.h"
-#include "core/json_reader.h"
+#include "util/error.h"
+#include "util/json_reader.h"
 
 namespace voxr {
 

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cctype>
 
-#include "core/error.h"
-#include "core/file_extension.h"
 #include "mesh/assimp_reader.h"
 #include "mesh/file_bytes.h"
 #include "mesh/mesh_readers.h"
 #include "mesh/polygon_triangulation.h"
+#include "util/error.h"
+#include "util/file_extension.h"
 
 namespace voxr {
 

@@ -12,10 +12,10 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/error.h"
 #include "core/generators.h"
 #include "core/mesh_loader.h"
 #include "core/subdivide.h"
+#include "util/error.h"
 
 namespace voxr {
 

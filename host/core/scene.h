@@ -22,9 +22,9 @@
 
 #include "core/animation.h"
 #include "core/grid_spec.h"
-#include "core/json_reader.h"
 #include "core/material.h"
 #include "core/triangle_soup.h"
+#include "util/json_reader.h"
 
 namespace voxr {
 

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <limits>
 
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr {
 

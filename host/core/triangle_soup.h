@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/host_array.h"
+#include "util/host_array.h"
 
 namespace voxr {
 

@@ -1,7 +1,7 @@
 #include "eval/render_case.h"
 
-#include "core/error.h"
 #include "render/render_scene.h"
+#include "util/error.h"
 
 namespace voxr {
 

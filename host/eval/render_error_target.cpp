@@ -4,10 +4,10 @@
 
 #include <algorithm>
 
-#include "core/clock.h"
-#include "core/error.h"
 #include "metrics/image_metrics.h"
 #include "reference/reference_refraction.h"
+#include "util/clock.h"
+#include "util/error.h"
 
 namespace voxr {
 

@@ -1,6 +1,6 @@
 #include "grid/channel_table.h"
 
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr {
 

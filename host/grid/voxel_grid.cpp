@@ -2,7 +2,7 @@
 
 #include <bit>
 
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr {
 

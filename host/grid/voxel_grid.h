@@ -10,8 +10,8 @@
 #include <glm/glm.hpp>
 
 #include "core/grid_spec.h"
-#include "core/host_array.h"
 #include "grid/channel_table.h"
+#include "util/host_array.h"
 
 namespace voxr {
 

@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "core/error.h"
 #include "io/grid_encoding.h"
+#include "util/error.h"
 
 namespace voxr {
 

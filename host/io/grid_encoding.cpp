@@ -1,6 +1,6 @@
 #include "io/grid_encoding.h"
 
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr {
 

@@ -16,9 +16,9 @@
 #include <memory>
 #include <vector>
 
-#include "core/error.h"
-#include "core/file_extension.h"
 #include "io/atomic_file.h"
+#include "util/error.h"
+#include "util/file_extension.h"
 
 // Each format through its own reference library: libpng (PNG), OpenEXR (EXR), stb_image (Radiance .hdr,
 // read only). They replaced OpenImageIO, whose ~250 shared libraries cost a fresh `voxr render` process

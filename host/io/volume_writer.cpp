@@ -5,12 +5,12 @@
 
 #include <fmt/format.h>
 
-#include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/binvox_writer.h"
 #include "io/nrrd_writer.h"
 #include "io/vox_writer.h"
 #include "io/vti_writer.h"
+#include "util/error.h"
 
 namespace voxr {
 

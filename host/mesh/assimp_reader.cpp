@@ -16,11 +16,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "core/file_extension.h"
 #include "mesh/corner_welder.h"
 #include "mesh/file_bytes.h"
-#include "mesh/text_scan.h"
+#include "util/error.h"
+#include "util/file_extension.h"
+#include "util/text_scan.h"
 
 namespace voxr {
 namespace {

@@ -7,7 +7,7 @@
 
 #include <cerrno>
 
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "mesh/mesh_readers.h"
-#include "mesh/text_scan.h"
+#include "util/text_scan.h"
 
 namespace voxr {
 

@@ -5,7 +5,7 @@
 #include <thread>
 
 #include "mesh/mesh_readers.h"
-#include "mesh/text_scan.h"
+#include "util/text_scan.h"
 
 namespace voxr {
 

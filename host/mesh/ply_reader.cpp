@@ -6,7 +6,7 @@
 #include <cstring>
 
 #include "mesh/mesh_readers.h"
-#include "mesh/text_scan.h"
+#include "util/text_scan.h"
 
 namespace voxr {
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "core/host_array.h"
 #include "mesh/polygon_mesh.h"
+#include "util/host_array.h"
 
 namespace voxr {
 

@@ -5,12 +5,11 @@
 
 #include "mesh/corner_welder.h"
 #include "mesh/mesh_readers.h"
-#include "mesh/text_scan.h"
+#include "util/text_scan.h"
 
 namespace voxr {
 
 namespace {
-
 
 bool looks_ascii(std::string_view bytes) {
   size_t i = 0;

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <span>
 
-#include "render/image_rgba.h"
+#include "util/image_rgba.h"
 
 namespace voxr {
 

@@ -8,8 +8,8 @@
 #include <limits>
 #include <vector>
 
-#include "core/error.h"
 #include "metrics/image_metrics.h"
+#include "util/error.h"
 
 namespace voxr {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <span>
 
-#include "render/image_rgba.h"
+#include "util/image_rgba.h"
 #include "voxr_layout.h"
 
 namespace voxr {

@@ -6,7 +6,7 @@
 #include <limits>
 #include <random>
 
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr {
 

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "core/clock.h"
+#include "util/clock.h"
 
 extern "C" bool voxr_openvdb_mesh_to_volume(const voxr::TriangleSoup* soup, const voxr::GridSpec* grid,
                                             const float* m, voxr::VoxelGrid* out, double* ms, char* error,

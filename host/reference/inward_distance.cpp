@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdint>
 
-#include "core/error.h"
 #include "reference/parallel_blocks.h"
+#include "util/error.h"
 
 namespace voxr {
 

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/clock.h"
-#include "core/error.h"
 #include "reference/parallel_blocks.h"
 #include "refraction.h"
 #include "render/shade_host.h"
+#include "util/clock.h"
+#include "util/error.h"
 
 namespace voxr {
 

@@ -23,7 +23,7 @@
 #include "reference/reference_scene.h"
 #include "render/camera_frame.h"
 #include "render/environment_map.h"
-#include "render/image_rgba.h"
+#include "util/image_rgba.h"
 #include "voxr_layout.h"
 
 namespace voxr {

@@ -1,9 +1,9 @@
 #include "reference/reference_renderer.h"
 
-#include "core/clock.h"
-#include "core/error.h"
 #include "reference/parallel_blocks.h"
 #include "render/shade_host.h"
+#include "util/clock.h"
+#include "util/error.h"
 
 namespace voxr {
 

@@ -13,11 +13,11 @@
 #include <type_traits>
 #include <vector>
 
-#include "core/clock.h"
-#include "core/error.h"
 #include "reference/parallel_blocks.h"
 #include "render/render_scene.h"
 #include "render/vertex_normals.h"
+#include "util/clock.h"
+#include "util/error.h"
 
 namespace voxr {
 

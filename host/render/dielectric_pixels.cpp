@@ -1,6 +1,6 @@
 #include "render/dielectric_pixels.h"
 
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
+#include "util/error.h"
 #include "voxr_layout.h"
 
 namespace voxr {

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "core/error.h"
-#include "core/file_extension.h"
 #include "environment.h"
 #include "io/image_file.h"
+#include "util/error.h"
+#include "util/file_extension.h"
 
 namespace voxr {
 

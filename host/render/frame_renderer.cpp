@@ -2,10 +2,10 @@
 
 #include <fmt/format.h>
 
-#include "core/clock.h"
-#include "core/error.h"
 #include "render/render_scene.h"
 #include "render/vertex_normals.h"
+#include "util/clock.h"
+#include "util/error.h"
 
 namespace voxr {
 

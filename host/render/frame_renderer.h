@@ -23,12 +23,12 @@
 #include "render/camera_frame.h"
 #include "render/dielectric_pixels.h"
 #include "render/environment_map.h"
-#include "render/image_rgba.h"
 #include "render/refraction_method.h"
 #include "render/scene_reference.h"
 #include "render/shadow_method.h"
 #include "render/technique.h"
 #include "render/visibility_rasterizer.h"
+#include "util/image_rgba.h"
 #include "voxelize/device_mesh.h"
 
 namespace voxr {

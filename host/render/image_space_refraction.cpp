@@ -2,7 +2,7 @@
 
 #include <glm/glm.hpp>
 
-#include "core/error.h"
+#include "util/error.h"
 #include "voxr_layout.h"
 
 namespace voxr {

@@ -1,6 +1,6 @@
 #include "render/light_space_maps.h"
 
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr {
 

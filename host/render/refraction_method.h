@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "core/named_values.h"
+#include "util/named_values.h"
 
 namespace voxr {
 

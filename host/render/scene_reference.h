@@ -11,7 +11,7 @@
 
 #include "render/camera_frame.h"
 #include "render/environment_map.h"
-#include "render/image_rgba.h"
+#include "util/image_rgba.h"
 #include "voxr_layout.h"
 
 namespace voxr {

@@ -1,8 +1,8 @@
 #include "render/shade_host.h"
 
-#include "core/error.h"
 #include "render/render_scene.h"
 #include "shading.h"
+#include "util/error.h"
 
 namespace voxr {
 

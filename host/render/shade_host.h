@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "render/environment_map.h"
-#include "render/image_rgba.h"
+#include "util/image_rgba.h"
 #include "voxr_layout.h"
 
 namespace voxr {

@@ -4,7 +4,7 @@
 #include <array>
 #include <string_view>
 
-#include "core/named_values.h"
+#include "util/named_values.h"
 
 namespace voxr {
 

@@ -30,11 +30,11 @@
 #include "render/camera_frame.h"
 #include "render/dielectric_pixels.h"
 #include "render/environment_map.h"
-#include "render/image_rgba.h"
 #include "render/light_frame.h"
 #include "render/refraction_method.h"
 #include "render/scene_reference.h"
 #include "render/shadow_method.h"
+#include "util/image_rgba.h"
 #include "voxelize/device_mesh.h"
 #include "voxelize/raster_mode.h"
 

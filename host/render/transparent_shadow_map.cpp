@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/error.h"
 #include "grid/channel_table.h"
+#include "util/error.h"
 
 namespace voxr {
 

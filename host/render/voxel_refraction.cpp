@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "core/error.h"
 #include "grid/channel_table.h"
 #include "render/visibility_rasterizer.h"
+#include "util/error.h"
 #include "voxr_layout.h"
 
 namespace voxr {

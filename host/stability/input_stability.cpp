@@ -14,7 +14,6 @@
 #include <functional>
 #include <limits>
 
-#include "core/error.h"
 #include "core/scene.h"
 #include "io/atomic_file.h"
 #include "render/camera_frame.h"
@@ -23,6 +22,7 @@
 #include "render/render_scene.h"
 #include "stability/stability_case.h"
 #include "stability/stability_voxels.h"
+#include "util/error.h"
 
 namespace voxr {
 

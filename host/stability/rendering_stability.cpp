@@ -24,7 +24,6 @@
 #include <string_view>
 #include <vector>
 
-#include "core/error.h"
 #include "core/scene.h"
 #include "eval/render_case.h"
 #include "io/image_file.h"
@@ -39,6 +38,7 @@
 #include "render/render_scene.h"
 #include "render/shade_host.h"
 #include "stability/stability_case.h"
+#include "util/error.h"
 
 namespace voxr {
 

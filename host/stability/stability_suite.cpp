@@ -7,7 +7,7 @@
 #include <cmath>
 #include <exception>
 
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr {
 

@@ -4,8 +4,8 @@
 #include <bit>
 
 #include "bench/table1.h"
-#include "core/error.h"
 #include "io/image_file.h"
+#include "util/error.h"
 #include "voxelize/reference_slicemap.h"
 #include "voxelize/reference_voxelizer.h"
 

@@ -10,7 +10,7 @@
 #include <optional>
 #include <thread>
 
-#include "core/error.h"
+#include "util/error.h"
 #include "voxelize/reference_voxelizer.h"
 #include "voxelize/snapped_triangle.h"
 #include "voxelize/triangle_splitter.h"

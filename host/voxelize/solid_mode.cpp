@@ -1,6 +1,6 @@
 #include "voxelize/solid_mode.h"
 
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr {
 

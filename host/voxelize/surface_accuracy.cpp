@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <bit>
 
-#include "core/error.h"
+#include "util/error.h"
 #include "voxelize/reference_voxelizer.h"
 #include "voxelize/snapped_triangle.h"
 

@@ -1,6 +1,6 @@
 #include "voxelize/voxelizer.h"
 
-#include "core/clock.h"
+#include "util/clock.h"
 #include "voxelize/slice_voxelizer.h"
 #include "voxelize/slicemap_voxelizer.h"
 #include "voxelize/solid_fill.h"

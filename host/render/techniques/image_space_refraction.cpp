@@ -2,9 +2,9 @@
 // GRAPHITE 2005). Per scene: d_N per vertex, ray cast by the exact reference as the paper precomputes it
 // offline (§3). Per frame: back faces and opaque surfaces rasterized, two refractions per pixel.
 #include "render/image_space_refraction.h"
-#include "core/clock.h"
 #include "render/technique.h"
 #include "render/visibility_rasterizer.h"
+#include "util/clock.h"
 
 namespace voxr {
 

@@ -2,9 +2,9 @@
 // every caster blocks), and filter, the game engines' opaque depth map x the light-space product of every
 // transparent surface's transmittance. One frame: fit the light's grid to what the camera sees, rasterize the
 // scene's mesh from the light (build), look the maps up at the path ends (lookup).
-#include "core/clock.h"
 #include "render/light_space_maps.h"
 #include "render/technique.h"
+#include "util/clock.h"
 
 namespace voxr {
 

@@ -2,9 +2,9 @@
 // reference (matched: the refracted path only, the device methods' model) and reference-full (Whitted's
 // reflection and refraction tree, exact Fresnel). Both render the finished frame on the host, shaded with the
 // exact shadows; the reference's BVH is built on first need, inside the frame.
-#include "core/clock.h"
-#include "core/error.h"
 #include "render/technique.h"
+#include "util/clock.h"
+#include "util/error.h"
 
 namespace voxr {
 

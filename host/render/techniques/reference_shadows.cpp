@@ -1,8 +1,8 @@
 // The exact shadows as a technique: the path ends are read back and the SceneReference (Embree shadow rays
 // through every surface, straight; reference/reference_renderer.h) gives their transmittance, which is
 // uploaded for shading. The reference's BVH is built on first need, inside the frame (host_ms).
-#include "core/clock.h"
 #include "render/technique.h"
+#include "util/clock.h"
 
 namespace voxr {
 

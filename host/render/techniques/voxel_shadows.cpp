@@ -5,9 +5,9 @@
 // grid, voxelize and accumulate transmittance (build); look it up at the path ends (lookup).
 #include <fmt/format.h>
 
-#include "core/clock.h"
 #include "render/technique.h"
 #include "render/transparent_shadow_map.h"
+#include "util/clock.h"
 
 namespace voxr {
 

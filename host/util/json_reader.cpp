@@ -1,4 +1,4 @@
-#include "core/json_reader.h"
+#include "util/json_reader.h"
 
 #include <nlohmann/json.hpp>
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr {
 

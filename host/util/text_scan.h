@@ -14,7 +14,7 @@
 
 #include <glm/glm.hpp>
 
-#include "core/error.h"
+#include "util/error.h"
 
 namespace voxr::text {
 

@@ -1,4 +1,4 @@
-#include "core/host_array.h"
+#include "util/host_array.h"
 
 #include <sys/mman.h>
 
