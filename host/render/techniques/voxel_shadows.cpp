@@ -2,8 +2,15 @@
 // Lai, TR 1688 §4.1, PG 2011 §4: per-voxel optical depth from the write count and material) and uniform
 // (Eisemann & Decoret, I3D 2006 §5: slicemap occupancy x one absorption constant). One frame: fit the light's
 // grid to what the camera sees, project the casters into a point light's frustum, upload them split for the
-// grid, voxelize and accumulate transmittance (build); look it up at the path ends (lookup).
+// grid, voxelize and accumulate transmittance (build); look it up at the path ends (lookup). The light grid
+// and the light mesh depend only on the scene's triangles, the light's position or direction, the bounds the
+// camera sees and the resolution: while none of these changes (a static scene, camera and light) they are
+// kept from the frame before, and the frame re-voxelizes the kept light mesh; set_scene (every frame of a
+// deforming scene) starts over.
 #include <fmt/format.h>
+
+#include <cstring>
+#include <optional>
 
 #include "render/technique.h"
 #include "render/transparent_shadow_map.h"
@@ -29,22 +36,32 @@ class VoxelShadows final : public ShadowTechnique {
   std::vector<ProgramSpec> programs(const RenderOptions&) const override { return {}; }
   void prepare(const RenderOptions& options) override { map_.prepare(shadow_map_options(options)); }
 
+  void set_scene(const FrameContext& ctx) override {
+    scene_bounds_ = ctx.soup->bounds();
+    kept_.reset();
+    light_mesh_.reset();
+  }
+
   void build(const FrameContext& ctx, const RenderOptions& options) override {
     FrameStats& st = *ctx.stats;
     const auto host_start = Clock::now();
-    const Bounds receivers = visible_bounds(ctx.soup->bounds(), *ctx.camera);
-    st.light = fit_light_frame(*ctx.light, receivers, *ctx.soup, options.shadow_resolution);
-    TriangleSoup projected;
-    if (st.light.projective()) projected = project_to_light_grid(*ctx.soup, st.light);
-    const TriangleSoup& light_soup = st.light.projective() ? projected : *ctx.soup;
-    DeviceMesh light_mesh = upload_mesh(*ctx.cl, light_soup, st.light.grid, SplitCull::kGrid);
-    const glm::vec3 tau =
-        options.shadows == ShadowMethod::kUniform
-            ? uniform_optical_depth(*ctx.soup, *ctx.host_materials, st.light.mean_slab_length())
-            : glm::vec3(0.0f);
+    const Bounds receivers = visible_bounds(scene_bounds_, *ctx.camera);
+    const LightMeshKey key{*ctx.light, receivers, options.shadow_resolution, options.shadows};
+    if (!kept_ || !(*kept_ == key)) {
+      light_mesh_.reset();  // before the soup its buffers may use in place
+      frame_ = fit_light_frame(*ctx.light, receivers, *ctx.soup, options.shadow_resolution);
+      projected_ = frame_.projective() ? project_to_light_grid(*ctx.soup, frame_) : TriangleSoup();
+      light_mesh_.emplace(
+          upload_mesh(*ctx.cl, frame_.projective() ? projected_ : *ctx.soup, frame_.grid, SplitCull::kGrid));
+      tau_ = options.shadows == ShadowMethod::kUniform
+                 ? uniform_optical_depth(*ctx.soup, *ctx.host_materials, frame_.mean_slab_length())
+                 : glm::vec3(0.0f);
+      kept_ = key;
+    }
+    st.light = frame_;
     st.host_ms += ms_since(host_start);
-    st.light_triangles = light_mesh.triangle_count();
-    map_.build(light_mesh, st.light, *ctx.materials, ctx.material_count, tau, shadow_map_options(options));
+    st.light_triangles = light_mesh_->triangle_count();
+    map_.build(*light_mesh_, frame_, *ctx.materials, ctx.material_count, tau_, shadow_map_options(options));
     st.device_bytes = map_.device_bytes();
   }
 
@@ -66,7 +83,29 @@ class VoxelShadows final : public ShadowTechnique {
   }
 
  private:
+  // What the kept light grid and mesh were made from.
+  struct LightMeshKey {
+    RenderLight light;
+    Bounds receivers;
+    uint32_t resolution;
+    ShadowMethod method;
+    bool operator==(const LightMeshKey& o) const {
+      const auto same3 = [](const float* a, const float* b) {
+        return std::memcmp(a, b, 3 * sizeof(float)) == 0;
+      };
+      return light.directional == o.light.directional && same3(light.position, o.light.position) &&
+             same3(light.direction, o.light.direction) && receivers.lo == o.receivers.lo &&
+             receivers.hi == o.receivers.hi && resolution == o.resolution && method == o.method;
+    }
+  };
+
   TransparentShadowMap map_;
+  Bounds scene_bounds_;
+  std::optional<LightMeshKey> kept_;
+  LightFrame frame_;
+  TriangleSoup projected_;  // a point light's projected casters, read in place by light_mesh_
+  std::optional<DeviceMesh> light_mesh_;
+  glm::vec3 tau_{0.0f};
 };
 
 }  // namespace
