@@ -141,6 +141,7 @@ void ClRuntime::enqueue(const std::string& name, cl::Kernel& kernel, size_t glob
   profiler_.record(name, event);
 #ifndef NDEBUG
   finish("running kernel " + name);
+  --syncs_;  // a Debug build's launch check, not one of the program's own synchronisations (syncs())
 #endif
 }
 

@@ -91,6 +91,7 @@ class ClRuntime {
 
   // Host synchronisations so far: every finish, blocking upload or download and map (each waits for the
   // queue), and the milliseconds the host spent blocked in them. A frame's count is the difference.
+  // Debug builds' per-launch checks are not counted.
   uint64_t syncs() const { return syncs_; }
   double sync_ms() const { return sync_ms_; }
   // CPU time of the calling thread inside those waits (thread_cpu_ms's clock).
