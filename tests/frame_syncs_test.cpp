@@ -37,7 +37,7 @@ FrameStats warm_frame(RefractionMethod refraction) {
   const EnvironmentMap environment = make_environment_map(scene.environment);
   const RenderLight light = render_light(scene.light, environment.mean(), soup.anchor);
   renderer.set_scene(soup, materials);
-  renderer.set_environment(environment);  // as the CLI does (else the ambient is uploaded every frame)
+  renderer.set_environment(environment);  // as the CLI does
   RenderOptions o;
   o.refraction.method = refraction;
   o.refraction.resolution = 64;

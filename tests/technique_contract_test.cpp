@@ -202,7 +202,9 @@ TEST_P(RefractionContract, IdentityPathsAndUnchangedEndsWithoutDielectrics) {
     }
   }
   // Pixel centres on a triangle edge may fall to either neighbour in the two; no more than 1 %.
-  if (host) EXPECT_GE(same_triangle, r.frame.paths.size() * 99 / 100);
+  if (host) {
+    EXPECT_GE(same_triangle, r.frame.paths.size() * 99 / 100);
+  }
 }
 
 TEST_P(RefractionContract, GlassBallIsFiniteAndHasItsStructure) {
@@ -216,7 +218,9 @@ TEST_P(RefractionContract, GlassBallIsFiniteAndHasItsStructure) {
     }
     refracted += (p.events & VOXR_PATH_EVENTS_MASK) > 0;
   }
-  if (GetParam().method != RefractionMethod::kNone) EXPECT_GT(refracted, 100u);
+  if (GetParam().method != RefractionMethod::kNone) {
+    EXPECT_GT(refracted, 100u);
+  }
   EXPECT_EQ(r.refraction_bytes > 0, has_refraction_structure(GetParam().method));
 }
 

@@ -42,12 +42,6 @@ std::string stage_text(const std::map<std::string, double>& stages, const char* 
   return out;
 }
 
-bool has_dielectric(const std::vector<Material>& materials, const TriangleSoup& soup) {
-  for (const glm::uvec4& t : soup.triangles)
-    if (t.w < materials.size() && materials[t.w].kind == MaterialKind::kDielectric) return true;
-  return false;
-}
-
 }  // namespace
 
 int run_bench_animation(const BenchAnimationArgs& args) {
@@ -71,7 +65,7 @@ int run_bench_animation(const BenchAnimationArgs& args) {
         render_light(scene.light, make_environment_map(scene.environment).mean(), rest.anchor);
     RenderOptions options;  // voxel shadows, centre mode, 256 columns
     options.refraction.method =
-        has_dielectric(materials, rest) ? RefractionMethod::kVoxelMulti : RefractionMethod::kNone;
+        has_dielectric(rest, materials) ? RefractionMethod::kVoxelMulti : RefractionMethod::kNone;
     FrameRenderer renderer(cl);
     renderer.prepare(options);
     renderer.set_environment(make_environment_map(scene.environment));

@@ -90,12 +90,6 @@ std::filesystem::path beside(const std::string& output, const std::string& tag) 
   return p.parent_path() / (p.stem().string() + "." + tag + p.extension().string());
 }
 
-bool has_dielectric(const TriangleSoup& soup, const std::vector<Material>& materials) {
-  for (const glm::uvec4& t : soup.triangles)
-    if (t.w < materials.size() && materials[t.w].kind == MaterialKind::kDielectric) return true;
-  return false;
-}
-
 // A number, or "inf" / "nan" as text (JSON has neither).
 nlohmann::json finite_or_inf(double v) {
   if (std::isnan(v)) return "nan";

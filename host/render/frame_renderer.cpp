@@ -90,9 +90,7 @@ void FrameRenderer::set_scene(const TriangleSoup& soup, const std::vector<Materi
   soup_ = &soup;
   materials_ = materials;
   mesh_ = std::make_unique<DeviceMesh>(cl_, soup);
-  scene_has_dielectric_ = false;
-  for (const glm::uvec4& t : soup.triangles)
-    scene_has_dielectric_ = scene_has_dielectric_ || materials[t.w].kind == MaterialKind::kDielectric;
+  scene_has_dielectric_ = has_dielectric(soup, materials);
   const std::vector<RenderMaterial> mats = render_materials(materials);
   materials_buffer_ = cl_.buffer(mats.size() * sizeof(RenderMaterial), "materials");
   cl_.upload(materials_buffer_, mats.data(), mats.size() * sizeof(RenderMaterial), "upload materials");
@@ -123,9 +121,11 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
 
   ShadowTechnique& shadows = shadow(options.shadows);
   RefractionTechnique& refract = refraction(options.refraction.method);
-  if (!environment_given_)  // the light's ambient colour, which may change from frame to frame
-    upload_environment(
-        EnvironmentMap::constant(glm::vec3(light.ambient[0], light.ambient[1], light.ambient[2])));
+  const glm::vec3 ambient(light.ambient[0], light.ambient[1], light.ambient[2]);
+  if (!environment_given_ && (!environment_map_ || ambient_ != ambient)) {
+    upload_environment(EnvironmentMap::constant(ambient));  // the light's ambient colour, when it changes
+    ambient_ = ambient;
+  }
   const uint64_t pixels = uint64_t(camera.width) * camera.height;
   ctx_.environment = &*environment_map_;
   ctx_.camera = &camera;

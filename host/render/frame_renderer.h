@@ -93,6 +93,7 @@ class FrameRenderer {
   glm::uvec2 environment_size_{0, 0};
   std::optional<EnvironmentMap> environment_map_;  // host copy for the techniques
   bool environment_given_ = false;
+  glm::vec3 ambient_{0.0f};  // without set_environment: the ambient colour the uploaded environment holds
   bool scene_has_dielectric_ = false;  // a triangle of the scene is a dielectric: refraction has work
 
   void upload_environment(const EnvironmentMap& environment);

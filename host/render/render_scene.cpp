@@ -60,4 +60,10 @@ LightAtPoint light_at(const RenderLight& light, const glm::vec3& point) {
   return out;
 }
 
+bool has_dielectric(const TriangleSoup& soup, const std::vector<Material>& materials) {
+  for (const glm::uvec4& t : soup.triangles)
+    if (t.w < materials.size() && materials[t.w].kind == MaterialKind::kDielectric) return true;
+  return false;
+}
+
 }  // namespace voxr

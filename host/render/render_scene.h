@@ -7,12 +7,16 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "core/triangle_soup.h"
 #include "voxr_layout.h"
 
 namespace voxr {
 
 // One RenderMaterial per scene material, same order (material ids index both).
 std::vector<RenderMaterial> render_materials(const std::vector<Material>& materials);
+
+// Whether a triangle of `soup` has a dielectric material (ids out of range are ignored): refraction has work.
+bool has_dielectric(const TriangleSoup& soup, const std::vector<Material>& materials);
 
 // The light with its position relative to `anchor` and `ambient` (the environment's mean radiance,
 // EnvironmentMap::mean) as the ambient term.
