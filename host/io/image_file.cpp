@@ -49,9 +49,11 @@ std::vector<char> encode_png(const ImageRgba& image, const std::string& name) {
   png.width = image.width;
   png.height = image.height;
   png.format = PNG_FORMAT_RGBA;  // sRGB-encoded, alpha not premultiplied
-  png_alloc_size_t size = 0;
-  if (!png_image_write_get_memory_size(png, size, 0, encoded.data(), 0, nullptr))
-    fail("{}: cannot encode the image: {}", name, one_line(png.message));
+  // Fast zlib settings: a fresh `voxr render` spent ~40 ms of its 0.4 s in deflate at 512 x 512 with the
+  // defaults (files ~1.3x larger). One pass into a worst-case-sized buffer: write_get_memory_size would
+  // compress the image a second time to learn the size.
+  png.flags = PNG_IMAGE_FLAG_FAST;
+  png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(png);
   std::vector<char> bytes(size);
   if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, encoded.data(), 0, nullptr))
     fail("{}: cannot encode the image: {}", name, one_line(png.message));
