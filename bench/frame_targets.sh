@@ -22,26 +22,46 @@ done
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 median_of() { python3 -c "import json,sys; print(round(json.load(open(sys.argv[1]))['ms']['frame_median'],1))" "$1"; }
+# The last frame's host time (ms, CPU time of the calling thread outside waits) and host synchronisations.
+# A deforming scene adds its posing (pose_scene + set_scene, host) in brackets.
+host_of() {
+  python3 -c "
+import json, sys
+r = json.load(open(sys.argv[1]))
+pose = r['frames'][-1].get('pose_ms', 0.0) if r.get('frames') else 0.0
+extra = f' (+ pose {pose:.1f})' if pose > 0 else ''
+print(f\"{r['ms']['host']:.2f}{extra} | {r['host_syncs']}\")" "$1"
+}
 frame() {  # BIN SCENE SIZE EXTRA... -> median warm frame ms
   local bin=$1 scene=$2 size=$3; shift 3
   "$bin" render "$scene" --size "$size" --frames "$frames" -q -o "$tmp/f.png" --report "$tmp/r.json" "$@"
   median_of "$tmp/r.json"
+  [ -n "${host_out:-}" ] && host_of "$tmp/r.json" >"$host_out"
+  return 0
 }
 echo "device: $("$voxr" devices 2>/dev/null | grep -m1 -E '^ *0:0' || true)"
 echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "date: $(date -u '+%Y-%m-%d %H:%M UTC'); frames per case: $frames (median)"
 echo
-echo "| scene | size | default ms | reference ms | default / reference |$([ -n "$baseline" ] && echo ' before ms |')"
-echo "|---|---|---:|---:|---:|$([ -n "$baseline" ] && echo '---:|')"
+echo "| scene | size | default ms | reference ms | default / reference | default host ms | host syncs |$([ -n "$baseline" ] && echo ' before ms |')"
+echo "|---|---|---:|---:|---:|---:|---:|$([ -n "$baseline" ] && echo '---:|')"
 for size in 640x480 1920x1080; do
   for scene in data/scenes/shadow-tree.json data/scenes/glass-sphere.json data/scenes/bunny-glass-130.json \
                data/scenes/glass-vase.json data/scenes/tree-1m.json; do
-    d=$(frame "$voxr" "$scene" "$size")
+    d=$(host_out=$tmp/host frame "$voxr" "$scene" "$size")
     r=$(frame "$voxr" "$scene" "$size" --refraction reference)
     b=""
     [ -n "$baseline" ] && b=" $(frame "$baseline" "$scene" "$size") |"
-    echo "| $(basename "$scene" .json) | $size | $d | $r | $(python3 -c "print(f'{$d/$r:.2f}')") |$b"
+    echo "| $(basename "$scene" .json) | $size | $d | $r | $(python3 -c "print(f'{$d/$r:.2f}')") | $(cat "$tmp/host") |$b"
   done
+done
+# A deforming scene: posed on the host and set_scene every frame, so nothing is kept between frames.
+for scene in data/scenes/swaying-tree.json; do
+  d=$(host_out=$tmp/host frame "$voxr" "$scene" 640x480)
+  r=$(frame "$voxr" "$scene" 640x480 --refraction reference)
+  b=""
+  [ -n "$baseline" ] && b=" $(frame "$baseline" "$scene" 640x480) |"
+  echo "| $(basename "$scene" .json) (deforming) | 640x480 | $d | $r | $(python3 -c "print(f'{$d/$r:.2f}')") | $(cat "$tmp/host") |$b"
 done
 echo
 fresh_ms() {  # BIN -> wall ms of one fresh default render
