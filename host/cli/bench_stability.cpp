@@ -7,6 +7,7 @@
 #include <ctime>
 #include <filesystem>
 
+#include "bench/report_fields.h"
 #include "cl/cl_runtime.h"
 #include "cli/bench_support.h"
 #include "cli/commands.h"

@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 
@@ -16,18 +15,6 @@
 namespace voxr::cli {
 
 namespace fs = std::filesystem;
-
-std::array<double, 3> load_averages() {
-  std::array<double, 3> load = {-1.0, -1.0, -1.0};
-  std::ifstream in("/proc/loadavg");
-  in >> load[0] >> load[1] >> load[2];
-  return load;
-}
-
-std::string load_average_text() {
-  const std::array<double, 3> load = load_averages();
-  return fmt::format("{:.2f} {:.2f} {:.2f}", load[0], load[1], load[2]);
-}
 
 std::string command_line() {
   std::ifstream f("/proc/self/cmdline", std::ios::binary);
@@ -45,17 +32,6 @@ std::string command_line() {
     start = end + 1;
   }
   return line;
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char text[64];
-  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&t));
-  return text;
-}
-
-std::string scene_label(const std::string& scene) {
-  return scene == "default" ? "default" : fs::path(scene).stem().string();
 }
 
 std::vector<double> time_fresh_renders(const std::vector<std::string>& render_args, int count,

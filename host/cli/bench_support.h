@@ -1,29 +1,16 @@
-// What the benchmark commands (bench voxelize, bench shadows, bench refraction) share: the machine's load, a
-// scene's label, and fresh `voxr render` processes timed as a user runs them.
+// What the benchmark commands (bench voxelize, bench shadows, bench refraction, ...) share besides
+// bench/report_fields.h: the command line, and fresh `voxr render` processes timed as a user runs them.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace voxr::cli {
 
-// /proc/loadavg's 1, 5 and 15 minute averages; -1 where it cannot be read.
-std::array<double, 3> load_averages();
-
-// The three load averages as "1.23 0.98 0.75" (Markdown and CSV cells).
-std::string load_average_text();
-
 // The process's own command line as the user typed it, the program named "voxr" (voxr-render's argv is
 // voxr's, exec'd).
 std::string command_line();
-
-// The current time as "2026-11-30 18:40:00 UTC".
-std::string utc_now();
-
-// A scene's label in tables: "default" for the built-in scene, else the file's stem.
-std::string scene_label(const std::string& scene);
 
 // Wall ms of each of `count` fresh processes `voxr render RENDER_ARGS -q -o TEMP.png [--device DEVICE]`
 // (this executable, the image written to a temporary file named by `tag`, removed after). Throws voxr::Error

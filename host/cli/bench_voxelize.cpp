@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "bench/bench_meshes.h"
+#include "bench/report_fields.h"
 #include "bench/voxelize_cases.h"
 #include "cl/cl_runtime.h"
 #include "cli/bench_support.h"

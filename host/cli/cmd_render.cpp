@@ -35,20 +35,18 @@
 #include "core/animation.h"
 #include "core/default_scene.h"
 #include "core/scene.h"
+#include "eval/reference_comparison.h"
 #include "eval/render_case.h"
 #include "eval/render_error_target.h"
 #include "io/atomic_file.h"
 #include "io/image_file.h"
 #include "metrics/image_metrics.h"
 #include "metrics/refraction_metrics.h"
-#include "metrics/shadow_receivers.h"
 #include "reference/reference_refraction.h"
-#include "reference/reference_renderer.h"
 #include "render/distance_map_refraction.h"
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
-#include "render/shade_host.h"
 #include "util/clock.h"
 #include "util/file_extension.h"
 #include "util/median.h"
@@ -197,10 +195,7 @@ int run_render(const RenderArgs& args) {
                            {"size", {width, height}},
                            {"animated", animated}};
   if (animated) report["fps"] = scene.fps;
-  ImageRgba image;
-  std::vector<SurfaceSample> samples;
-  std::vector<glm::vec3> transmittance;
-  std::vector<RefractionPath> paths;
+  RenderedFrame last;  // the last frame (with --compare-reference its samples, transmittance and paths)
   std::vector<double> frame_ms;
   std::map<std::string, std::vector<double>> stage_ms;  // per stage, one per frame
   nlohmann::json frames = nlohmann::json::array();
@@ -235,7 +230,7 @@ int run_render(const RenderArgs& args) {
                       {"frame_ms", ms},
                       {"pose_ms", pose_ms},
                       {"stages", stages}});
-    if (pattern) write_image(image, pattern->name(f));
+    if (pattern) write_image(last.image, pattern->name(f));
   };
   const auto wait_start = Clock::now();
   PreparedRuntime<FrameRenderer> prepared = background.get();
@@ -274,11 +269,7 @@ int run_render(const RenderArgs& args) {
       if (options.shadows == ShadowMethod::kReference && !reference_only) reference_scene();
       pose_ms = ms_since(pose_start);
     }
-    RenderedFrame frame = prepared.engine->render(light, camera, options, &stats);
-    image = std::move(frame.image);
-    samples = std::move(frame.samples);
-    transmittance = std::move(frame.transmittance);
-    paths = std::move(frame.paths);
+    last = prepared.engine->render(light, camera, options, &stats);
     nlohmann::json frame_stages = nlohmann::json::object();
     for (const auto& [name, ms] : stats.stage_ms) {
       frame_stages[name] = ms;
@@ -322,50 +313,57 @@ int run_render(const RenderArgs& args) {
   report["frames"] = frames;
 
   nlohmann::json compare = nlohmann::json::object();
-  // The exact transmittance at this frame's path ends: the shadows are measured with it, and the refraction
-  // is measured on this frame's paths shaded with it, so that its error is refraction's alone.
-  std::vector<glm::vec3> exact;
-  ImageRgba exact_shadow_image;
   if (args.compare_reference) {
+    // The exact transmittance at this frame's path ends: the shadows are measured with it, and the
+    // refraction is measured on this frame's paths shaded with it, so that its error is refraction's alone.
     if (tty) fmt::print(stderr, "\r{:<60}\rtracing the exact shadows...", "");
-    exact = reference_transmittance(*reference_scene(), light, samples);
-    exact_shadow_image = shade_paths(samples, exact, paths, render_mats, light, environment, width, height);
-  }
-  if (args.compare_reference && refracting) {
-    if (tty) fmt::print(stderr, "\r{:<60}\rtracing the matched reference...", "");
-    const auto ref_start = Clock::now();
-    const RefractionReference r = render_refraction_reference(*reference_scene(), render_mats, light,
-                                                              environment, camera, ReferenceModel::kMatched);
-    const RefractionError e = refraction_error(exact_shadow_image, paths, r.image, r.paths);
-    const std::filesystem::path error_path = beside(last_output, "error");
-    write_image(error_image(exact_shadow_image, r.image), error_path.string());
-    compare["refraction"] = {{"reference", "matched"},
-                             {"rmse", e.rmse},
-                             {"psnr", finite_or_inf(e.psnr)},
-                             {"shadows", "exact (the frame's paths, shaded with the exact transmittance)"},
-                             {"angle_mean_deg", finite_or_inf(e.angle_mean_deg)},
-                             {"angle_p95_deg", finite_or_inf(e.angle_p95_deg)},
-                             {"angle_pixels", e.angle_pixels},
-                             {"refracted_pixels", e.refracted_pixels},
-                             {"event_mismatch_share", e.event_mismatch_share},
-                             {"nonfinite_pixels", e.nonfinite_pixels},
-                             {"error_image", error_path.string()},
-                             {"reference_ms", ms_since(ref_start)}};
-  }
-  if (args.compare_reference && !exact_shadows) {
+    ReferenceFrame exact;
+    exact.shadows = voxr::exact_shadows(*reference_scene(), last.samples, last.paths, render_mats, light,
+                                        environment, width, height);
+    double refraction_ms = 0.0;
+    if (refracting) {
+      if (tty) fmt::print(stderr, "\r{:<60}\rtracing the matched reference...", "");
+      const auto ref_start = Clock::now();
+      exact.refraction = render_refraction_reference(*reference_scene(), render_mats, light, environment,
+                                                     camera, ReferenceModel::kMatched);
+      refraction_ms = ms_since(ref_start);
+    }
     if (tty) fmt::print(stderr, "\r{:<60}\rcomparing with the reference...", "");
-    const auto ref_start = Clock::now();
-    const std::vector<uint8_t> mask = shadow_receivers(samples, render_mats, light);
-    const TransmittanceError e = transmittance_error(transmittance, exact, mask, 0.05);
-    const std::filesystem::path error_path = beside(last_output, refracting ? "shadow-error" : "error");
-    write_image(error_image(transmittance, exact, width, height, mask, 1.0), error_path.string());
-    compare["shadows"] = {{"transmittance_rmse", e.rmse},
-                          {"transmittance_max", e.max_abs},
-                          {"share_over_0.05", e.share_over_threshold},
-                          {"receivers", e.receivers},
-                          {"psnr", finite_or_inf(psnr(image, exact_shadow_image))},
-                          {"error_image", error_path.string()},
-                          {"reference_ms", ms_since(ref_start)}};
+    const auto compare_start = Clock::now();
+    const FrameError error = measure_against_reference(last, exact);
+    const double compare_ms = ms_since(compare_start);
+    const ExactShadows& shadows = *exact.shadows;
+    if (error.refraction) {
+      const RefractionError& e = *error.refraction;
+      const std::filesystem::path error_path = beside(last_output, "error");
+      write_image(error_image(shadows.image, exact.refraction->image), error_path.string());
+      compare["refraction"] = {{"reference", "matched"},
+                               {"rmse", e.rmse},
+                               {"psnr", finite_or_inf(e.psnr)},
+                               {"shadows", "exact (the frame's paths, shaded with the exact transmittance)"},
+                               {"angle_mean_deg", finite_or_inf(e.angle_mean_deg)},
+                               {"angle_p95_deg", finite_or_inf(e.angle_p95_deg)},
+                               {"angle_pixels", e.angle_pixels},
+                               {"refracted_pixels", e.refracted_pixels},
+                               {"event_mismatch_share", e.event_mismatch_share},
+                               {"nonfinite_pixels", e.nonfinite_pixels},
+                               {"error_image", error_path.string()},
+                               {"reference_ms", refraction_ms + compare_ms}};
+    }
+    if (!exact_shadows) {
+      const ShadowError& e = *error.shadows;
+      const std::filesystem::path error_path = beside(last_output, refracting ? "shadow-error" : "error");
+      write_image(
+          error_image(last.transmittance, shadows.transmittance, width, height, shadows.receivers, 1.0),
+          error_path.string());
+      compare["shadows"] = {{"transmittance_rmse", e.transmittance.rmse},
+                            {"transmittance_max", e.transmittance.max_abs},
+                            {"share_over_0.05", e.transmittance.share_over_threshold},
+                            {"receivers", e.transmittance.receivers},
+                            {"psnr", finite_or_inf(e.psnr)},
+                            {"error_image", error_path.string()},
+                            {"reference_ms", compare_ms}};
+    }
   }
   if (!compare.empty()) report["compare_reference"] = compare;
   const uint64_t bytes = stats.device_bytes + stats.refraction_bytes;
@@ -390,7 +388,7 @@ int run_render(const RenderArgs& args) {
     if (target->shadows) t["shadows"] = search_json(*target->shadows, target->shadows_budget);
     report["error_target"] = t;
   }
-  if (!pattern) write_image(image, args.output);
+  if (!pattern) write_image(last.image, args.output);
   report["ms"]["process"] = ms_since(process_start);
   if (!args.report.empty()) write_file_atomically(args.report, report.dump(2) + "\n");
   if (tty) fmt::print(stderr, "\r{:<60}\r", "");

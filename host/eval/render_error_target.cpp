@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "metrics/image_metrics.h"
+#include "eval/reference_comparison.h"
 #include "reference/reference_refraction.h"
 #include "util/clock.h"
 #include "util/error.h"
@@ -32,24 +32,29 @@ RenderTargetChoice choose_render_grids(FrameRenderer& renderer, const ReferenceS
   choice.sample_height = std::max(1u, height / 2);
   const CameraFrame sample =
       make_camera_frame(camera, anchor, bounds, choice.sample_width, choice.sample_height);
-  const auto frame = [&](const RenderOptions& o) { return renderer.render(light, sample, o).image; };
-  // The reference image on the sample: the matched refraction reference, or without refraction the device
-  // frame with exact shadows (the same visibility buffer: the shadows' error alone).
+  const auto frame = [&](const RenderOptions& o) { return renderer.render(light, sample, o); };
+  // The exact frame on the sample: the matched refraction reference, or without refraction the device frame
+  // with exact shadows (the same visibility buffer: the shadows' error alone). Frames are measured by their
+  // image alone (FrameError::image_rmse).
   RenderOptions exact_shadows = *options;
   exact_shadows.shadows = ShadowMethod::kReference;
   exact_shadows.keep_samples = false;
-  const ImageRgba reference_image =
-      refracting ? render_refraction_reference(reference, materials, light, environment, sample,
-                                               ReferenceModel::kMatched)
-                       .image
-                 : frame(exact_shadows);
+  ReferenceFrame exact;
+  if (refracting)
+    exact.refraction = render_refraction_reference(reference, materials, light, environment, sample,
+                                                   ReferenceModel::kMatched);
+  else
+    exact.shadows = ExactShadows{{}, {}, frame(exact_shadows).image};
+  const auto error = [&](const RenderOptions& o) {
+    return measure_against_reference(frame(o), exact).image_rmse;
+  };
   if (refraction_grid) {
     choice.refraction_budget = shadow_grid ? kRefractionShare * target : target;
     choice.refraction = choose_resolution(choice.refraction_budget, kRenderTargetLowest, kRenderTargetHighest,
                                           [&](uint32_t r) {
                                             RenderOptions o = exact_shadows;
                                             o.refraction.resolution = r;
-                                            const double e = rmse(frame(o), reference_image);
+                                            const double e = error(o);
                                             progress(fmt::format("refraction grid {} -> {:.5f}", r, e));
                                             return e;
                                           });
@@ -63,7 +68,7 @@ RenderTargetChoice choose_render_grids(FrameRenderer& renderer, const ReferenceS
           RenderOptions o = *options;
           o.keep_samples = false;
           o.shadow_resolution = r;
-          const double e = rmse(frame(o), reference_image);
+          const double e = error(o);
           progress(fmt::format("shadow grid {} -> {:.5f}", r, e));
           return e;
         });
@@ -71,7 +76,7 @@ RenderTargetChoice choose_render_grids(FrameRenderer& renderer, const ReferenceS
   }
   RenderOptions chosen = *options;
   chosen.keep_samples = false;
-  choice.sample_error = rmse(frame(chosen), reference_image);
+  choice.sample_error = error(chosen);
   choice.search_ms = ms_since(start);
   return choice;
 }

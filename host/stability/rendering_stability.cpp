@@ -1,8 +1,9 @@
 // The stability suite's rendering family (stability_case.h): one scene per failure mode of the shadow and
 // refraction methods, every device method on it, measured against the exact Embree references at the same
-// pixels (shadows: transmittance at the visible receivers, metrics/shadow_receivers.h; refraction: the
-// matched reference image and paths, metrics/refraction_metrics.h, each method's frame shaded with the exact
-// shadows so the error is refraction's alone).
+// pixels through eval/reference_comparison.h (shadows: transmittance at the visible receivers,
+// metrics/shadow_receivers.h; refraction: the matched reference image and paths,
+// metrics/refraction_metrics.h, each method's frame shaded with the exact shadows so the error is
+// refraction's alone).
 //
 // Bounds (kBounds) are 1.5x the value measured on PoCL (2-core CPU) when the bound was set, rounded up to
 // two significant digits, never below a floor that absorbs rounding between devices (0.005 for an RMSE or
@@ -25,18 +26,15 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "eval/reference_comparison.h"
 #include "eval/render_case.h"
 #include "io/image_file.h"
 #include "metrics/image_metrics.h"
 #include "metrics/refraction_metrics.h"
-#include "metrics/shadow_receivers.h"
 #include "reference/reference_refraction.h"
-#include "reference/reference_renderer.h"
-#include "reference/reference_scene.h"
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/render_scene.h"
-#include "render/shade_host.h"
 #include "stability/stability_case.h"
 #include "util/error.h"
 
@@ -476,11 +474,11 @@ std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::stri
   base.keep_samples = true;
   renderer.prepare(base);
   const RenderedFrame primary = renderer.render(s.light(), s.camera(), base);
-  const ReferenceScene& reference = s.reference().scene();
-  const std::vector<glm::vec3> exact = reference_transmittance(reference, s.light(), primary.samples);
-  const ImageRgba exact_image =
-      shade_samples(primary.samples, exact, s.render_materials(), s.light(), v.width, v.height);
-  const std::vector<uint8_t> mask = shadow_receivers(primary.samples, s.render_materials(), s.light());
+  ReferenceFrame reference;
+  reference.shadows = exact_shadows(s.reference().scene(), primary.samples, {}, s.render_materials(),
+                                    s.light(), s.environment(), v.width, v.height);
+  const std::vector<glm::vec3>& exact = reference.shadows->transmittance;
+  const std::vector<uint8_t>& mask = reference.shadows->receivers;
   const uint64_t receivers = uint64_t(std::count(mask.begin(), mask.end(), uint8_t(1)));
   if (receivers == 0) fail("rendering_stability.cpp: case {} has no visible receiver", name);
   // The sheet case's two regions.
@@ -507,7 +505,7 @@ std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::stri
     o.keep_samples = true;
     renderer.prepare(o);
     const RenderedFrame frame = renderer.render(s.light(), s.camera(), o);
-    const TransmittanceError e = transmittance_error(frame.transmittance, exact, mask, 0.05);
+    const TransmittanceError e = measure_against_reference(frame, reference).shadows->transmittance;
     rows.push_back(measured_row(
         name, m.label, "transmittance RMSE over visible receivers", Measure::kShadowRmse, e.rmse, ctx.full,
         fmt::format("{} receivers, {:.1f}% off by > 0.05", e.receivers, 100.0 * e.share_over_threshold)));
@@ -534,7 +532,7 @@ std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::stri
                                   Measure::kLeak, leaked / double(count), ctx.full,
                                   fmt::format("{} floor receivers exactly in the slab's shadow", count)));
     }
-    picture.add(frame.image, exact_image,
+    picture.add(frame.image, reference.shadows->image,
                 error_image(frame.transmittance, exact, v.width, v.height, mask, 1.0));
   }
   set_picture(rows, picture.write(ctx.picture_dir, name));
@@ -583,9 +581,10 @@ uint64_t tir_pixels(std::span<const RefractionPath> paths) {
 std::vector<StabilityRow> run_refraction_case(StabilityContext& ctx, const std::string& name, RenderCase& s,
                                               bool tir) {
   const Version v = version(ctx.full);
-  const ReferenceScene& reference = s.reference().scene();
-  const RefractionReference exact = render_refraction_reference(
-      reference, s.render_materials(), s.light(), s.environment(), s.camera(), ReferenceModel::kMatched);
+  ReferenceFrame reference;
+  reference.refraction = render_refraction_reference(s.reference().scene(), s.render_materials(), s.light(),
+                                                     s.environment(), s.camera(), ReferenceModel::kMatched);
+  const RefractionReference& exact = *reference.refraction;
   std::vector<StabilityRow> rows;
   const uint64_t reference_tir = tir_pixels(exact.paths);
   if (tir)
@@ -611,7 +610,7 @@ std::vector<StabilityRow> run_refraction_case(StabilityContext& ctx, const std::
       rows.push_back(row(name, method, "image RMSE vs matched reference", nan, 0.0, false, e.what()));
       continue;
     }
-    const RefractionError e = refraction_error(frame.image, frame.paths, exact.image, exact.paths);
+    const RefractionError e = *measure_against_reference(frame, reference).refraction;
     rows.push_back(measured_row(name, method, "image RMSE vs matched reference", Measure::kImageRmse, e.rmse,
                                 ctx.full, fmt::format("PSNR {:.1f} dB", e.psnr)));
     rows.push_back(measured_row(name, method, "event mismatch share of refracted pixels",
