@@ -1,5 +1,6 @@
 // The OpenCL plumbing a fresh process relies on: the on-disk program cache (round trip, UTF-8 keys, stale
-// and corrupt entries rebuilt from source) and the profiler's bounded window.
+// and corrupt entries rebuilt from source, programs built together on several threads) and the profiler's
+// bounded window.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -84,6 +85,42 @@ TEST(ProgramCache, CorruptBinariesAreRebuiltFromSource) {
   }
   for (const auto& [path, size] : corrupt_size)
     EXPECT_GT(std::filesystem::file_size(path), size) << "the entry was stored again";
+  if (saved.empty())
+    unsetenv("VOXR_CACHE_DIR");
+  else
+    setenv("VOXR_CACHE_DIR", saved.c_str(), 1);
+}
+
+// build_programs loads the programs not built yet on several threads: each distinct (file, defines) is
+// built and stored once, duplicates and programs built before are not built again, and a failure on a worker
+// thread reaches the caller.
+TEST(ProgramCache, ProgramsBuiltTogetherAreBuiltOnceEach) {
+  test::TempDir dir;
+  const char* old = std::getenv("VOXR_CACHE_DIR");
+  const std::string saved = old ? old : "";
+  setenv("VOXR_CACHE_DIR", dir.path().c_str(), 1);
+  const auto entries = [&] {
+    return std::distance(std::filesystem::directory_iterator(dir.path()),
+                         std::filesystem::directory_iterator());
+  };
+  {
+    ClRuntime cl;
+    cl.kernel("refract_none.cl", "identity_paths");
+    EXPECT_EQ(entries(), 1);
+    cl.build_programs({{"layout_probe.cl", {}},
+                       {"refract_none.cl", {}},
+                       {"layout_probe.cl", {{"VOXR_UNUSED", "1"}}},
+                       {"layout_probe.cl", {}}});
+    EXPECT_EQ(entries(), 3);
+    const double built_ms = cl.build_ms();
+    cl::Buffer out = cl.buffer(kProbeValues * sizeof(cl_uint), "probe");
+    cl::Kernel k = cl.kernel("layout_probe.cl", "layout_probe", {{"VOXR_UNUSED", "1"}});
+    cl.launch("layout_probe", k, 1, 1, out);
+    cl.finish();
+    EXPECT_EQ(cl.build_ms(), built_ms) << "a program build_programs built was built again";
+    EXPECT_THROW(cl.build_programs({{"layout_probe.cl", {{"VOXR_UNUSED", "2"}}}, {"no_such_kernel.cl", {}}}),
+                 InternalError);
+  }
   if (saved.empty())
     unsetenv("VOXR_CACHE_DIR");
   else

@@ -1,12 +1,15 @@
 #include "cl/cl_runtime.h"
 
+#include <atomic>
 #include <cstdlib>
 #include <ctime>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "cl/embedded_kernels.h"
 #include "util/clock.h"
@@ -67,7 +70,7 @@ std::string expand_includes(const std::string& source,
 }  // namespace
 
 cl::Program ClRuntime::build_from_source(const std::string& file, const std::string& source,
-                                         const std::string& options) {
+                                         const std::string& options) const {
   cl::Program program(context_, source);
   try {
     program.build({device_.device}, options.c_str());
@@ -84,44 +87,84 @@ cl::Program ClRuntime::build_from_source(const std::string& file, const std::str
   return program;
 }
 
-cl::Program& ClRuntime::program(const std::string& file, const Defines& defines) {
+std::string ClRuntime::build_options(const Defines& defines) const {
   std::string options = "-cl-std=CL1.2";
   if (device_.correctly_rounded_sqrt) options += " -cl-fp32-correctly-rounded-divide-sqrt";
   for (const auto& [key, value] : defines) options += " -D" + key + "=" + value;
-  const std::string memo_key = file + "|" + options;
-  if (auto it = programs_.find(memo_key); it != programs_.end()) return it->second;
+  return options;
+}
 
-  const auto start = Clock::now();
+cl::Program ClRuntime::load_program(const std::string& file, const std::string& options) const {
   std::set<std::string> seen;
   const std::string source = expand_includes(
       load_source(file), [this](const std::string& f) { return load_source(f); }, seen);
   const std::string cache_key = fmt::format("{}\n{}\n{}\n{}\n{}", device_.platform_name, device_.name,
                                             device_.driver_version, options, source);
-  std::optional<cl::Program> program;
   if (const auto binary = program_cache_.load(cache_key)) {
     try {
       cl::Program from_binary(context_, {device_.device}, cl::Program::Binaries{*binary});
       from_binary.build({device_.device}, options.c_str());
-      program = std::move(from_binary);
+      return from_binary;
     } catch (const cl::Error&) {
       // A stale or corrupt entry: build from source below and store a fresh one.
     }
   }
-  if (!program) {
-    program = build_from_source(file, source, options);
-    try {
-      const std::vector<std::vector<unsigned char>> binaries = program->getInfo<CL_PROGRAM_BINARIES>();
-      if (binaries.size() == 1) program_cache_.store(cache_key, binaries[0]);
-    } catch (const cl::Error&) {
-      // Drivers that cannot return binaries simply build from source every time.
-    }
+  cl::Program program = build_from_source(file, source, options);
+  try {
+    const std::vector<std::vector<unsigned char>> binaries = program.getInfo<CL_PROGRAM_BINARIES>();
+    if (binaries.size() == 1) program_cache_.store(cache_key, binaries[0]);
+  } catch (const cl::Error&) {
+    // Drivers that cannot return binaries simply build from source every time.
   }
+  return program;
+}
+
+cl::Program& ClRuntime::program(const std::string& file, const Defines& defines) {
+  const std::string options = build_options(defines);
+  const std::string memo_key = file + "|" + options;
+  if (auto it = programs_.find(memo_key); it != programs_.end()) return it->second;
+  const auto start = Clock::now();
+  cl::Program program = load_program(file, options);
   build_ms_ += ms_since(start);
-  return programs_.emplace(memo_key, std::move(*program)).first->second;
+  return programs_.emplace(memo_key, std::move(program)).first->second;
 }
 
 void ClRuntime::build_programs(const std::vector<ProgramSpec>& specs) {
-  for (const ProgramSpec& spec : specs) program(spec.file, spec.defines);
+  // The programs not built yet, loaded on a few threads: most of a fresh process's program time is the
+  // driver reading each stored binary (PoCL parses its LLVM bitcode), which runs in parallel.
+  std::vector<std::pair<std::string, std::string>> todo;  // file, options
+  std::set<std::string> queued;
+  for (const ProgramSpec& spec : specs) {
+    std::string options = build_options(spec.defines);
+    const std::string memo_key = spec.file + "|" + options;
+    if (programs_.count(memo_key) == 0 && queued.insert(memo_key).second)
+      todo.emplace_back(spec.file, std::move(options));
+  }
+  if (todo.empty()) return;
+  const auto start = Clock::now();
+  std::vector<std::optional<cl::Program>> built(todo.size());
+  std::vector<std::exception_ptr> errors(todo.size());
+  std::atomic<size_t> next{0};
+  const auto work = [&] {
+    for (size_t i = next++; i < todo.size(); i = next++) {
+      try {
+        built[i] = load_program(todo[i].first, todo[i].second);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  {
+    std::vector<std::jthread> threads;
+    const size_t count = std::min<size_t>(todo.size(), std::max(1u, std::thread::hardware_concurrency())) - 1;
+    for (size_t t = 0; t < count; ++t) threads.emplace_back(work);
+    work();
+  }
+  for (size_t i = 0; i < todo.size(); ++i) {
+    if (errors[i]) std::rethrow_exception(errors[i]);
+    programs_.emplace(todo[i].first + "|" + todo[i].second, std::move(*built[i]));
+  }
+  build_ms_ += ms_since(start);
 }
 
 cl::Kernel ClRuntime::kernel(const std::string& file, const std::string& name, const Defines& defines) {

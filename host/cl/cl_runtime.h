@@ -40,7 +40,9 @@ class ClRuntime {
   // once per (file, defines) and process, from the on-disk ProgramCache when it holds them; a failed build
   // throws voxr::Error with the full build log.
   cl::Kernel kernel(const std::string& file, const std::string& name, const Defines& defines = {});
-  // Builds (or loads) the programs now, so that a timed run that follows pays nothing for them.
+  // Builds (or loads) the programs now, so that a timed run that follows pays nothing for them: those not
+  // built yet, on up to one thread per core (OpenCL builds are thread-safe; PoCL's reading of a stored
+  // binary is most of a fresh process's program time). The first failure is rethrown.
   void build_programs(const std::vector<ProgramSpec>& specs);
   // Milliseconds spent building or loading programs so far.
   double build_ms() const { return build_ms_; }
@@ -111,8 +113,12 @@ class ClRuntime {
   void enqueue(const std::string& name, cl::Kernel& kernel, size_t global, size_t local);
   std::string load_source(const std::string& file) const;
   cl::Program& program(const std::string& file, const Defines& defines);
+  std::string build_options(const Defines& defines) const;
+  // Builds `file` with `options`, from the ProgramCache when it holds it (then stores it); safe to call
+  // from several threads at once (build_programs).
+  cl::Program load_program(const std::string& file, const std::string& options) const;
   cl::Program build_from_source(const std::string& file, const std::string& source,
-                                const std::string& options);
+                                const std::string& options) const;
 
   DeviceInfo device_;
   cl::Context context_;
