@@ -1,6 +1,7 @@
 // The voxel shadows keep their light grid and light mesh while the scene, the light's position or direction,
 // the camera's view and the resolution stay the same (render/techniques/voxel_shadows.cpp): a kept frame
-// uploads nothing and gives the image a fresh renderer gives; a moved light or camera rebuilds them.
+// reads nothing back before the voxelization and gives the image a fresh renderer gives; a moved light or
+// camera rebuilds them.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -68,7 +69,7 @@ TEST(LightMeshReuse, KeptAndRebuiltFramesEqualFreshOnes) {
     const ImageRgba a = r.render(s.light(0.0f), s.camera(0.0f), options(m), &first).image;
     const ImageRgba b = r.render(s.light(0.0f), s.camera(0.0f), options(m), &kept).image;
     EXPECT_EQ(a.pixels, b.pixels);
-    // The kept frame uploads no light mesh: two waits fewer (the mesh's upload and its finish).
+    // The kept frame builds no light frame or mesh: two waits fewer (the fit's and the mesh's readbacks).
     EXPECT_LE(kept.host_syncs + 2, first.host_syncs) << shadow_method_info(m).name;
     EXPECT_EQ(kept.light.grid.dims, first.light.grid.dims);
     // A moved light, then a turned camera: rebuilt, the same as a renderer that never saw the old frames.
