@@ -86,11 +86,10 @@ class DeviceLightFrame {
   // fit_light_frame with `casters` on the device. Throws as fit_light_frame does.
   const LightFrame& fit(const RenderLight& light, const Bounds& receivers, const DeviceMesh& casters,
                         uint32_t resolution);
-  // The mesh to voxelize on frame().grid after fit(): `casters` itself for a directional light when no
-  // triangle needs splitting, else a mesh in this object's buffers (valid until the next call). Throws
-  // voxr::Error beyond 2^32/3 pieces or when a triangle needs more than 16 levels of splitting.
+  // The mesh to voxelize on the fitted frame's grid after fit(): `casters` itself for a directional light
+  // when no triangle needs splitting, else a mesh in this object's buffers (valid until the next call).
+  // Throws voxr::Error beyond 2^32/3 pieces or when a triangle needs more than 16 levels of splitting.
   const DeviceMesh& light_mesh(const DeviceMesh& casters);
-  const LightFrame& frame() const { return frame_; }
 
  private:
   ClRuntime& cl_;

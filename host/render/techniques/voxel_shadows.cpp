@@ -39,7 +39,7 @@ class VoxelShadows final : public ShadowTechnique {
 
   void set_scene(const FrameContext& ctx) override {
     scene_bounds_ = ctx.mesh->bounds();
-    uniform_.reset();
+    uniform_ = uniform_absorption(*ctx.soup, *ctx.host_materials);  // per scene: no frame makes the pass
     kept_.reset();
     light_mesh_ = nullptr;
   }
@@ -54,9 +54,7 @@ class VoxelShadows final : public ShadowTechnique {
     if (!kept_ || !(*kept_ == key)) {
       frame_ = device_frame_.fit(*ctx.light, receivers, *ctx.mesh, options.shadow_resolution);
       light_mesh_ = &device_frame_.light_mesh(*ctx.mesh);
-      if (options.shadows == ShadowMethod::kUniform && !uniform_)
-        uniform_ = uniform_absorption(*ctx.soup, *ctx.host_materials);  // once per scene
-      tau_ = options.shadows == ShadowMethod::kUniform ? uniform_->at(frame_.mean_slab_length())
+      tau_ = options.shadows == ShadowMethod::kUniform ? uniform_.at(frame_.mean_slab_length())
                                                        : glm::vec3(0.0f);
       kept_ = key;
     }
@@ -104,8 +102,7 @@ class VoxelShadows final : public ShadowTechnique {
   TransparentShadowMap map_;
   DeviceLightFrame device_frame_;
   Bounds scene_bounds_;
-  std::optional<UniformAbsorption>
-      uniform_;  // the uniform method's sums, taken on its first frame of a scene
+  UniformAbsorption uniform_;  // the uniform method's sums over the scene's transparent triangles
   std::optional<LightMeshKey> kept_;
   LightFrame frame_;
   // device_frame_'s light mesh, or for a directional light with nothing to split the scene's own mesh
