@@ -371,6 +371,13 @@ TriangleSoup project_to_light_grid(const TriangleSoup& soup, const LightFrame& f
   return out;
 }
 
+bool LightFitKey::operator==(const LightFitKey& o) const {
+  const auto same3 = [](const float* a, const float* b) { return std::memcmp(a, b, 3 * sizeof(float)) == 0; };
+  return light.directional == o.light.directional && same3(light.position, o.light.position) &&
+         same3(light.direction, o.light.direction) && receivers.lo == o.receivers.lo &&
+         receivers.hi == o.receivers.hi && resolution == o.resolution;
+}
+
 namespace {
 
 // kernels/render/shadow/light_project.cl's work-group size and reduction slots (passed as defines: one

@@ -69,6 +69,16 @@ LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, co
 // are kept; triangle order is kept for the survivors. The host reference of DeviceLightFrame::light_mesh.
 TriangleSoup project_to_light_grid(const TriangleSoup& soup, const LightFrame& frame);
 
+// What a fitted frame depends on besides the scene's triangles: the light's position or direction (not its
+// colour), the receivers and the resolution. The shadow techniques keep their frame, and what they built from
+// it, while the key stays equal and the scene is unchanged.
+struct LightFitKey {
+  RenderLight light;
+  Bounds receivers;
+  uint32_t resolution = 0;
+  bool operator==(const LightFitKey& o) const;
+};
+
 // The light's grid and the mesh voxelized on it, built on the device from the scene's device mesh
 // (kernels/render/shadow/light_project.cl): no host pass over triangles; what the frames render with. The
 // host functions above are the reference: the frame is the one fit_light_frame gives (the kernels repeat its

@@ -10,7 +10,6 @@
 // the kept light mesh; set_scene (every frame of a deforming scene) starts over.
 #include <fmt/format.h>
 
-#include <cstring>
 #include <optional>
 
 #include "render/technique.h"
@@ -50,7 +49,7 @@ class VoxelShadows final : public ShadowTechnique {
     const auto host_start = Clock::now();
     const double waited_before = ctx.cl->sync_ms();
     const Bounds receivers = visible_bounds(scene_bounds_, *ctx.camera);
-    const LightMeshKey key{*ctx.light, receivers, options.shadow_resolution, options.shadows};
+    const LightMeshKey key{{*ctx.light, receivers, options.shadow_resolution}, options.shadows};
     if (!kept_ || !(*kept_ == key)) {
       frame_ = device_frame_.fit(*ctx.light, receivers, *ctx.mesh, options.shadow_resolution);
       light_mesh_ = &device_frame_.light_mesh(*ctx.mesh);
@@ -85,18 +84,9 @@ class VoxelShadows final : public ShadowTechnique {
  private:
   // What the kept light grid and mesh were made from.
   struct LightMeshKey {
-    RenderLight light;
-    Bounds receivers;
-    uint32_t resolution;
+    LightFitKey fit;
     ShadowMethod method;
-    bool operator==(const LightMeshKey& o) const {
-      const auto same3 = [](const float* a, const float* b) {
-        return std::memcmp(a, b, 3 * sizeof(float)) == 0;
-      };
-      return light.directional == o.light.directional && same3(light.position, o.light.position) &&
-             same3(light.direction, o.light.direction) && receivers.lo == o.receivers.lo &&
-             receivers.hi == o.receivers.hi && resolution == o.resolution && method == o.method;
-    }
+    bool operator==(const LightMeshKey&) const = default;
   };
 
   TransparentShadowMap map_;
