@@ -62,7 +62,8 @@ std::vector<glm::vec3> shadow_at(const ShadowCase& c, const std::vector<glm::vec
   } else {
     const TriangleSoup projected = frame.projective() ? project_to_light_grid(c.soup, frame) : TriangleSoup{};
     DeviceMesh mesh = upload_mesh(cl, frame.projective() ? projected : c.soup, frame.grid, SplitCull::kGrid);
-    TransparentShadowMap map(cl);
+    Voxelizer voxelizer(cl);
+    TransparentShadowMap map(cl, voxelizer);
     map.build(mesh, frame, materials, m, uniform_optical_depth(c.soup, c.materials, frame.params.voxel_size),
               options);
     map.lookup(sample_buffer, n, materials, m, light, options, out);

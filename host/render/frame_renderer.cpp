@@ -15,20 +15,21 @@ constexpr size_t kGroup = 64;
 
 }  // namespace
 
-FrameRenderer::FrameRenderer(ClRuntime& cl) : cl_(cl), rasterizer_(cl), dielectric_pixels_(cl) {
+FrameRenderer::FrameRenderer(ClRuntime& cl)
+    : cl_(cl), rasterizer_(cl), dielectric_pixels_(cl), voxelizer_(cl) {
   ctx_.cl = &cl;
 }
 FrameRenderer::~FrameRenderer() = default;
 
 ShadowTechnique& FrameRenderer::shadow(ShadowMethod method) {
   std::unique_ptr<ShadowTechnique>& t = shadows_[method];
-  if (!t) t = make_shadow_technique(cl_, method);
+  if (!t) t = make_shadow_technique(cl_, voxelizer_, method);
   return *t;
 }
 
 RefractionTechnique& FrameRenderer::refraction(RefractionMethod method) {
   std::unique_ptr<RefractionTechnique>& t = refractions_[method];
-  if (!t) t = make_refraction_technique(cl_, method);
+  if (!t) t = make_refraction_technique(cl_, voxelizer_, method);
   return *t;
 }
 

@@ -30,6 +30,7 @@
 #include "render/visibility_rasterizer.h"
 #include "util/image_rgba.h"
 #include "voxelize/device_mesh.h"
+#include "voxelize/voxelizer.h"
 
 namespace voxr {
 
@@ -79,6 +80,7 @@ class FrameRenderer {
   ClRuntime& cl_;
   VisibilityRasterizer rasterizer_;
   DielectricPixels dielectric_pixels_;
+  Voxelizer voxelizer_;  // the device's one, shared by the techniques that voxelize (made before them)
   std::map<ShadowMethod, std::unique_ptr<ShadowTechnique>> shadows_;
   std::map<RefractionMethod, std::unique_ptr<RefractionTechnique>> refractions_;
   std::map<const void*, bool> scene_set_;  // technique -> its per-scene setup ran for the current scene

@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <vector>
 
+#include "cl/scan.h"
 #include "util/error.h"
+#include "voxelize/triangle_splitter.h"
 
 namespace voxr {
 
@@ -133,17 +136,27 @@ bool casts_on(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
 
 }  // namespace
 
-LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, const TriangleSoup& casters,
-                           uint32_t resolution) {
+namespace {
+
+// What fit_light_frame knows before it looks at a triangle: the light space, the receivers' box, columns and
+// depth range, and the casters' tolerance and near cut.
+struct FitSetup {
+  LightSpace space;
+  std::array<glm::vec3, 8> rc;
+  float eps = 0.0f;
+  Footprint receiving;
+  float receivers_near = kInf, receivers_far = -kInf;
+  float depth_floor = -kInf;
+};
+
+FitSetup setup_fit(const RenderLight& light, const Bounds& receivers, uint32_t resolution) {
   check_resolution(resolution);
   if (receivers.empty()) fail("nothing to shadow: the scene's visible bounds are empty");
-  LightFrame f;
-  const auto rc = corners(receivers);
-  const uint32_t n = resolution;
+  FitSetup s;
+  s.rc = corners(receivers);
   const glm::vec3 size = receivers.size();
-  const float eps = 1e-4f * std::max({size.x, size.y, size.z, 1e-6f});
-
-  LightSpace space;
+  s.eps = 1e-4f * std::max({size.x, size.y, size.z, 1e-6f});
+  LightSpace& space = s.space;
   space.projective = !light.directional;
   if (light.directional) {
     space.rows =
@@ -158,84 +171,56 @@ LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, co
           L.x, L.y, L.z);
     space.rows = frame_rows(glm::normalize(0.5f * (receivers.lo + receivers.hi) - L));
   }
-
   // The receivers' columns and depth range.
-  Footprint receiving;
-  float receivers_near = kInf, receivers_far = -kInf;
-  for (const glm::vec3& c : rc) {
+  for (const glm::vec3& c : s.rc) {
     if (space.projective && !(space.view_depth(c) > 0.0f))
       fail(
           "the point light at ({:.4g}, {:.4g}, {:.4g}) (anchor-relative) is beside or among the receivers: a "
           "frustum grid cannot hold them; move the light or use a directional light",
           space.light.x, space.light.y, space.light.z);
     const glm::vec3 q = space(c);
-    receiving.extend(glm::vec2(q));
-    receivers_near = std::min(receivers_near, q.z);
-    receivers_far = std::max(receivers_far, q.z);
+    s.receiving.extend(glm::vec2(q));
+    s.receivers_near = std::min(s.receivers_near, q.z);
+    s.receivers_far = std::max(s.receivers_far, q.z);
   }
-  // The columns of the triangles that can shadow a receiver, and their nearest depth.
   // Frustum slabs are uniform in 1/depth: a near plane close to the light would spend them all there. Casters
   // nearer the light than a tenth of the nearest receiver's depth are cut there (their shadow then starts at
   // the cut).
-  const float depth_floor = space.projective ? std::max(1e-3f * receivers_far, 0.1f * receivers_near) : -kInf;
-  Footprint casting;
-  // Per casting triangle: its light-space box and nearest depth (vertices in front of the light only).
-  struct Caster {
-    Footprint box;
-    float near;
-  };
-  std::vector<Caster> casting_triangles;
-  for (const glm::uvec4& t : casters.triangles) {
-    const glm::vec3 a(casters.positions[t.x]), b(casters.positions[t.y]), c(casters.positions[t.z]);
-    if (!casts_on(a, b, c, rc, light, eps)) continue;
-    Caster k{{}, kInf};
-    // A triangle reaching behind the light's near cut (projective) counts by its part in front of it.
-    std::array<glm::vec3, 4> corners_in_front;
-    int n_front = 0;
-    if (!space.projective) {
-      corners_in_front = {a, b, c, c};
-      n_front = 3;
-    } else {
-      const std::array<glm::vec3, 3> view{space.rows * (a - space.light), space.rows * (b - space.light),
-                                          space.rows * (c - space.light)};
-      n_front = clip_near(view, depth_floor, corners_in_front);
-      for (int i = 0; i < n_front; ++i)  // back to world, so space() maps them like any point
-        corners_in_front[i] = glm::transpose(space.rows) * corners_in_front[i] + space.light;
-    }
-    for (int i = 0; i < n_front; ++i) {
-      const glm::vec3 q = space(corners_in_front[i]);
-      k.box.extend(glm::vec2(q));
-      k.near = std::min(k.near, q.z);
-    }
-    if (k.box.empty()) continue;
-    casting.extend(k.box.lo);
-    casting.extend(k.box.hi);
-    casting_triangles.push_back(k);
-  }
+  if (space.projective) s.depth_floor = std::max(1e-3f * s.receivers_far, 0.1f * s.receivers_near);
+  return s;
+}
+
+// The footprint: the receivers' columns cut down to the casters' (when they overlap at all).
+Footprint cut_footprint(const Footprint& receiving, const Footprint& casting) {
   Footprint fp = receiving;
   if (!casting.empty() && casting.overlaps(receiving)) {
     fp.lo = glm::max(receiving.lo, casting.lo);
     fp.hi = glm::min(receiving.hi, casting.hi);
   }
+  return fp;
+}
+
+// The grid from the footprint and the nearest caster's depth in it (kInf: none).
+LightFrame finish_fit(const FitSetup& s, const Footprint& fp, float near, uint32_t n,
+                      const glm::dvec3& anchor) {
+  LightFrame f;
+  const LightSpace& space = s.space;
   // Only casters need slabs: a receiver nearer the light than all of them is lit (depth < 0 in the grid).
-  float near = kInf;
-  for (const Caster& k : casting_triangles)
-    if (k.near < near && k.box.overlaps(fp)) near = k.near;
-  if (!(near < receivers_far)) near = receivers_near;
+  if (!(near < s.receivers_far)) near = s.receivers_near;
   const glm::vec2 extent = glm::max(fp.hi - fp.lo, glm::vec2(1e-6f));
   // One column of margin on every side (bilinear lookups at the edge). Orthographic grids also need their
   // (at most 4 n) cubic voxels to reach from the nearest caster to the farthest receiver.
   float h = std::max(extent.x, extent.y) / float(n - 2);
-  if (!space.projective) h = std::max(h, (receivers_far - near) / float(4 * n - 1));
+  if (!space.projective) h = std::max(h, (s.receivers_far - near) / float(4 * n - 1));
   const glm::uvec2 columns(uint32_t(std::ceil(extent.x / h)) + 2, uint32_t(std::ceil(extent.y / h)) + 2);
   if (!space.projective) {
     // Cubic voxels; half a voxel of margin in depth.
     const uint32_t slabs =
-        std::min(4 * n, std::max(1u, uint32_t(std::ceil((receivers_far - near) / h + 1.0f))));
+        std::min(4 * n, std::max(1u, uint32_t(std::ceil((s.receivers_far - near) / h + 1.0f))));
     const glm::vec3 lo_light(fp.lo.x - h, fp.lo.y - h, near - 0.5f * h);
     f.grid.axes = glm::transpose(space.rows);  // columns: x, y, z axes in world space
     f.grid.origin = f.grid.axes * lo_light;
-    f.grid.anchor = casters.anchor;
+    f.grid.anchor = anchor;
     f.grid.voxel_size = h;
     f.grid.dims = glm::uvec3(columns, slabs);
     const auto m = f.grid.world_to_grid();
@@ -243,7 +228,7 @@ LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, co
     f.params.projective = 0;
     f.params.voxel_size = h;
   } else {
-    const float z_near = std::max(depth_floor, near * 0.999f), z_far = receivers_far * 1.001f;
+    const float z_near = std::max(s.depth_floor, near * 0.999f), z_far = s.receivers_far * 1.001f;
     f.grid = GridSpec{};
     f.grid.dims = glm::uvec3(columns, n);
     f.grid.anchor = glm::dvec3(0.0);
@@ -270,6 +255,54 @@ LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, co
   f.params.dims[1] = f.grid.dims.y;
   f.params.dims[2] = f.grid.dims.z;
   return f;
+}
+
+}  // namespace
+
+LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, const TriangleSoup& casters,
+                           uint32_t resolution) {
+  const FitSetup s = setup_fit(light, receivers, resolution);
+  const LightSpace& space = s.space;
+  // The columns of the triangles that can shadow a receiver, and their nearest depth.
+  Footprint casting;
+  // Per casting triangle: its light-space box and nearest depth (vertices in front of the light only).
+  struct Caster {
+    Footprint box;
+    float near;
+  };
+  std::vector<Caster> casting_triangles;
+  for (const glm::uvec4& t : casters.triangles) {
+    const glm::vec3 a(casters.positions[t.x]), b(casters.positions[t.y]), c(casters.positions[t.z]);
+    if (!casts_on(a, b, c, s.rc, light, s.eps)) continue;
+    Caster k{{}, kInf};
+    // A triangle reaching behind the light's near cut (projective) counts by its part in front of it.
+    std::array<glm::vec3, 4> corners_in_front;
+    int n_front = 0;
+    if (!space.projective) {
+      corners_in_front = {a, b, c, c};
+      n_front = 3;
+    } else {
+      const std::array<glm::vec3, 3> view{space.rows * (a - space.light), space.rows * (b - space.light),
+                                          space.rows * (c - space.light)};
+      n_front = clip_near(view, s.depth_floor, corners_in_front);
+      for (int i = 0; i < n_front; ++i)  // back to world, so space() maps them like any point
+        corners_in_front[i] = glm::transpose(space.rows) * corners_in_front[i] + space.light;
+    }
+    for (int i = 0; i < n_front; ++i) {
+      const glm::vec3 q = space(corners_in_front[i]);
+      k.box.extend(glm::vec2(q));
+      k.near = std::min(k.near, q.z);
+    }
+    if (k.box.empty()) continue;
+    casting.extend(k.box.lo);
+    casting.extend(k.box.hi);
+    casting_triangles.push_back(k);
+  }
+  const Footprint fp = cut_footprint(s.receiving, casting);
+  float near = kInf;
+  for (const Caster& k : casting_triangles)
+    if (k.near < near && k.box.overlaps(fp)) near = k.near;
+  return finish_fit(s, fp, near, resolution, casters.anchor);
 }
 
 TriangleSoup project_to_light_grid(const TriangleSoup& soup, const LightFrame& frame) {
@@ -336,6 +369,179 @@ TriangleSoup project_to_light_grid(const TriangleSoup& soup, const LightFrame& f
     }
   }
   return out;
+}
+
+bool LightFitKey::operator==(const LightFitKey& o) const {
+  const auto same3 = [](const float* a, const float* b) { return std::memcmp(a, b, 3 * sizeof(float)) == 0; };
+  return light.directional == o.light.directional && same3(light.position, o.light.position) &&
+         same3(light.direction, o.light.direction) && receivers.lo == o.receivers.lo &&
+         receivers.hi == o.receivers.hi && resolution == o.resolution;
+}
+
+namespace {
+
+// kernels/render/shadow/light_project.cl's work-group size and reduction slots (passed as defines: one
+// source).
+constexpr size_t kLightGroup = 256;
+enum LightSlot : uint32_t { kCast = 0, kNear = 4, kBoundsSlot = 5, kSplit = 11, kOverflow = 12, kSlots = 13 };
+constexpr int kSplitDepth = 16;
+
+Defines light_defines() {
+  return {{"WG_SIZE", std::to_string(kLightGroup)},
+          {"LIGHT_SPLIT_EXTENT", fmt::format("{:.1f}f", kSplitExtentVoxels)},
+          {"LIGHT_SPLIT_DEPTH", std::to_string(kSplitDepth)},
+          {"LIGHT_CAST", std::to_string(kCast)},
+          {"LIGHT_NEAR", std::to_string(kNear)},
+          {"LIGHT_BOUNDS", std::to_string(kBoundsSlot)},
+          {"LIGHT_SPLIT", std::to_string(kSplit)},
+          {"LIGHT_OVERFLOW", std::to_string(kOverflow)},
+          {"LIGHT_SLOTS", std::to_string(kSlots)}};
+}
+
+// light_project.cl's LightFit and LightPieces, by value.
+struct LightFitArgs {
+  cl_float4 receivers_lo, receivers_hi, row0, row1, row2, light;
+  cl_uint projective;
+  cl_float eps, depth_floor;
+};
+static_assert(sizeof(LightFitArgs) == 112 && alignof(LightFitArgs) == 16);
+struct LightPiecesArgs {
+  cl_float4 m0, m1, m2, view0, view1, view2, light, dims;
+  cl_float z_min;
+  cl_uint projective, write, pad;
+};
+static_assert(sizeof(LightPiecesArgs) == 144 && alignof(LightPiecesArgs) == 16);
+
+cl_float4 f4(const glm::vec3& v, float w = 0.0f) {
+  return {{v.x, v.y, v.z, w}};
+}
+
+float key_value(uint32_t k) {
+  const uint32_t u = (k & 0x80000000u) ? (k & 0x7fffffffu) : ~k;
+  float f;
+  std::memcpy(&f, &u, 4);
+  return f;
+}
+
+}  // namespace
+
+DeviceLightFrame::DeviceLightFrame(ClRuntime& cl) : cl_(cl) {}
+
+std::vector<ProgramSpec> DeviceLightFrame::programs() const {
+  std::vector<ProgramSpec> specs = scan_programs();
+  specs.push_back({"light_project.cl", light_defines()});
+  return specs;
+}
+
+const LightFrame& DeviceLightFrame::fit(const RenderLight& light, const Bounds& receivers,
+                                        const DeviceMesh& casters, uint32_t resolution) {
+  const FitSetup s = setup_fit(light, receivers, resolution);
+  const Defines defines = light_defines();
+  cl::Buffer& reduce = reduce_.ensure(cl_, kSlots * 4, "light fit reductions");
+  cl::Kernel init = cl_.kernel("light_project.cl", "light_reduce_init", defines);
+  cl_.launch("light_fit", init, 1, 1, reduce);
+  LightFitArgs args{};
+  args.receivers_lo = f4(receivers.lo);
+  args.receivers_hi = f4(receivers.hi);
+  const glm::mat3 axes = glm::transpose(s.space.rows);  // columns: the rows of space.rows
+  args.row0 = f4(axes[0]);
+  args.row1 = f4(axes[1]);
+  args.row2 = f4(axes[2]);
+  args.light = light.directional ? f4(glm::vec3(light.direction[0], light.direction[1], light.direction[2]))
+                                 : f4(s.space.light);
+  args.projective = s.space.projective ? 1 : 0;
+  args.eps = s.eps;
+  args.depth_floor = s.depth_floor;
+  const cl_uint n = casters.triangle_count();
+  cl::Kernel casting = cl_.kernel("light_project.cl", "light_fit_casters", defines);
+  cl::Buffer& boxes = boxes_.ensure(cl_, uint64_t(n) * 16, "light fit caster boxes");
+  cl::Buffer& nears = nears_.ensure(cl_, uint64_t(n) * 4, "light fit caster depths");
+  cl_.launch("light_fit", casting, n, kLightGroup, args, casters.positions(), casters.triangles(), n, boxes,
+             nears, reduce);
+  const cl_float4 receiving = {{s.receiving.lo.x, s.receiving.lo.y, s.receiving.hi.x, s.receiving.hi.y}};
+  cl::Kernel nearest = cl_.kernel("light_project.cl", "light_fit_near", defines);
+  cl_.launch("light_fit", nearest, n, kLightGroup, receiving, boxes, nears, n, reduce);
+  std::array<uint32_t, kSlots> r{};
+  cl_.download(reduce, r.data(), 5 * 4, "readback light fit");
+  Footprint casting_box;
+  casting_box.lo = glm::vec2(key_value(r[kCast + 0]), key_value(r[kCast + 1]));
+  casting_box.hi = glm::vec2(key_value(r[kCast + 2]), key_value(r[kCast + 3]));
+  frame_ = finish_fit(s, cut_footprint(s.receiving, casting_box), key_value(r[kNear]), resolution,
+                      casters.anchor());
+  return frame_;
+}
+
+const DeviceMesh& DeviceLightFrame::light_mesh(const DeviceMesh& casters) {
+  const LightFrame& f = frame_;
+  const Defines defines = light_defines();
+  cl::Buffer& reduce = reduce_.ensure(cl_, kSlots * 4, "light fit reductions");
+  cl::Kernel init = cl_.kernel("light_project.cl", "light_reduce_init", defines);
+  cl_.launch("light_mesh", init, 1, 1, reduce);
+  LightPiecesArgs args{};
+  const std::array<float, 12> m = f.grid.world_to_grid();
+  args.m0 = {{m[0], m[1], m[2], m[3]}};
+  args.m1 = {{m[4], m[5], m[6], m[7]}};
+  args.m2 = {{m[8], m[9], m[10], m[11]}};
+  const glm::mat3 view = glm::transpose(f.view);  // columns: the view's rows
+  args.view0 = f4(view[0]);
+  args.view1 = f4(view[1]);
+  args.view2 = f4(view[2]);
+  args.light = f4(f.light_position);
+  args.dims = f4(glm::vec3(f.grid.dims));
+  args.z_min = 0.5f * f.near_depth;
+  args.projective = f.projective() ? 1 : 0;
+  const cl_uint n = casters.triangle_count();
+  cl::Buffer& counts = counts_.ensure(cl_, uint64_t(n) * 4, "light mesh piece counts");
+  cl::Buffer& offsets = offsets_.ensure(cl_, uint64_t(n) * 8, "light mesh piece offsets");
+  cl::Kernel pieces = cl_.kernel("light_project.cl", "light_pieces", defines);
+  // Point light: every vertex projected once (the scene mesh's positions buffer holds exactly its vertices).
+  const uint64_t vertices = f.projective() ? casters.positions().getInfo<CL_MEM_SIZE>() / 16 : 0;
+  if (vertices > 0xffffffffull) fail("{} vertices are more than 2^32-1", vertices);
+  cl::Buffer& projected =
+      projected_.ensure(cl_, std::max<uint64_t>(vertices, 1) * 16, "light mesh projected vertices");
+  if (vertices > 0) {
+    cl::Kernel project = cl_.kernel("light_project.cl", "light_vertices", defines);
+    cl_.launch("light_mesh", project, vertices, kLightGroup, args, f.params, casters.positions(),
+               cl_uint(vertices), projected);
+  }
+  // Pass 0 counts; its reductions travel back with the scan's total.
+  args.write = 0;
+  cl::Buffer& out_positions = positions_.ensure(cl_, 48, "light mesh positions");
+  cl::Buffer& out_triangles = triangles_.ensure(cl_, 16, "light mesh triangles");
+  cl_.launch("light_mesh", pieces, n, kLightGroup, args, f.params, casters.positions(), casters.triangles(),
+             projected, n, counts, offsets, cl_ulong(0), out_positions, out_triangles, reduce);
+  std::array<uint32_t, kSlots> r{};
+  cl_.download_later(reduce, r.data(), kSlots * 4, "readback light mesh counts");
+  uint64_t total = 0;
+  if (n > 0)
+    total = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, n, "light_mesh");
+  else
+    cl_.finish("counting the light mesh");
+  if (r[kOverflow])
+    fail("{} light-grid triangles need more than {} levels of splitting (more than {} voxels long)",
+         r[kOverflow], kSplitDepth, kSplitExtentVoxels * float(1u << kSplitDepth));
+  const uint64_t split = r[kSplit];
+  if (!f.projective() && split == 0) {
+    mesh_.reset();
+    return casters;
+  }
+  if (total > 0xffffffffull / 3) fail("the light's grid needs {} triangles, more than 2^32/3", total);
+  Bounds bounds = casters.bounds();
+  if (f.projective()) {
+    bounds.lo = glm::vec3(key_value(r[kBoundsSlot + 0]), key_value(r[kBoundsSlot + 1]),
+                          key_value(r[kBoundsSlot + 2]));
+    bounds.hi = glm::vec3(key_value(r[kBoundsSlot + 3]), key_value(r[kBoundsSlot + 4]),
+                          key_value(r[kBoundsSlot + 5]));
+  }
+  cl::Buffer& written_positions =
+      positions_.ensure(cl_, std::max<uint64_t>(total, 1) * 48, "light mesh positions");
+  cl::Buffer& written_triangles =
+      triangles_.ensure(cl_, std::max<uint64_t>(total, 1) * 16, "light mesh triangles");
+  args.write = 1;
+  cl_.launch("light_mesh", pieces, n, kLightGroup, args, f.params, casters.positions(), casters.triangles(),
+             projected, n, counts, offsets, cl_ulong(total), written_positions, written_triangles, reduce);
+  mesh_ = std::make_unique<DeviceMesh>(written_positions, written_triangles, uint32_t(total), bounds, split);
+  return *mesh_;
 }
 
 }  // namespace voxr

@@ -13,11 +13,16 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "cl/cl_runtime.h"
+#include "cl/scratch_buffers.h"
 #include "core/grid_spec.h"
 #include "core/triangle_soup.h"
 #include "render/camera_frame.h"
+#include "voxelize/device_mesh.h"
 #include "voxr_layout.h"
 
 namespace voxr {
@@ -54,13 +59,53 @@ Bounds visible_bounds(const Bounds& scene, const CameraFrame& camera);
 // plane, away from the light: a floor under everything casts nothing visible); the depth runs from the
 // nearest such caster in the footprint to the farthest receiver. Receivers outside the footprint are lit.
 // Throws voxr::Error when a point light lies inside the receivers' bounds (a frustum cannot see all around;
-// use a directional light) or the resolution is out of range.
+// use a directional light) or the resolution is out of range. The host reference of DeviceLightFrame::fit,
+// which frames render with (tests/device_light_frame_test.cpp compares them).
 LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, const TriangleSoup& casters,
                            uint32_t resolution);
 
 // Projective frames: the soup mapped into grid units (anchor 0), triangles clipped to the near half of the
 // light's view (z >= half the near depth) and culled when wholly outside one side of the grid. Material ids
-// are kept; triangle order is kept for the survivors.
+// are kept; triangle order is kept for the survivors. The host reference of DeviceLightFrame::light_mesh.
 TriangleSoup project_to_light_grid(const TriangleSoup& soup, const LightFrame& frame);
+
+// What a fitted frame depends on besides the scene's triangles: the light's position or direction (not its
+// colour), the receivers and the resolution. The shadow techniques keep their frame, and what they built from
+// it, while the key stays equal and the scene is unchanged.
+struct LightFitKey {
+  RenderLight light;
+  Bounds receivers;
+  uint32_t resolution = 0;
+  bool operator==(const LightFitKey& o) const;
+};
+
+// The light's grid and the mesh voxelized on it, built on the device from the scene's device mesh
+// (kernels/render/shadow/light_project.cl): no host pass over triangles; what the frames render with. The
+// host functions above are the reference: the frame is the one fit_light_frame gives (the kernels repeat its
+// float operations in its order, no contraction; a device without correctly rounded division and sqrt may
+// differ in the last bit), the mesh has the triangles project_to_light_grid and split_oversized_triangles
+// (SplitCull::kGrid) give, as separate corners, in another order (the voxels do not depend on it). Two host
+// synchronisations: one readback of the fit's four bounds and depth, one of the light mesh's size, bounds
+// and split count.
+class DeviceLightFrame {
+ public:
+  explicit DeviceLightFrame(ClRuntime& cl);
+
+  std::vector<ProgramSpec> programs() const;
+
+  // fit_light_frame with `casters` on the device. Throws as fit_light_frame does.
+  const LightFrame& fit(const RenderLight& light, const Bounds& receivers, const DeviceMesh& casters,
+                        uint32_t resolution);
+  // The mesh to voxelize on the fitted frame's grid after fit(): `casters` itself for a directional light
+  // when no triangle needs splitting, else a mesh in this object's buffers (valid until the next call).
+  // Throws voxr::Error beyond 2^32/3 pieces or when a triangle needs more than 16 levels of splitting.
+  const DeviceMesh& light_mesh(const DeviceMesh& casters);
+
+ private:
+  ClRuntime& cl_;
+  LightFrame frame_;
+  GrowingBuffer reduce_, boxes_, nears_, projected_, counts_, offsets_, positions_, triangles_;
+  std::unique_ptr<DeviceMesh> mesh_;
+};
 
 }  // namespace voxr

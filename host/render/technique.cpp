@@ -52,12 +52,14 @@ HostFrame RefractionTechnique::render_on_host(const FrameContext&, const RenderO
   throw InternalError("render_on_host of a technique that does not finish on the host");
 }
 
-std::unique_ptr<ShadowTechnique> make_shadow_technique(ClRuntime& cl, ShadowMethod method) {
-  return row_of(kShadowTechniques, method).make(cl);
+std::unique_ptr<ShadowTechnique> make_shadow_technique(ClRuntime& cl, Voxelizer& voxelizer,
+                                                       ShadowMethod method) {
+  return row_of(kShadowTechniques, method).make(cl, voxelizer);
 }
 
-std::unique_ptr<RefractionTechnique> make_refraction_technique(ClRuntime& cl, RefractionMethod method) {
-  return row_of(kRefractionTechniques, method).make(cl);
+std::unique_ptr<RefractionTechnique> make_refraction_technique(ClRuntime& cl, Voxelizer& voxelizer,
+                                                               RefractionMethod method) {
+  return row_of(kRefractionTechniques, method).make(cl, voxelizer);
 }
 
 }  // namespace voxr

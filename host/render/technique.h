@@ -40,6 +40,8 @@
 
 namespace voxr {
 
+class Voxelizer;
+
 struct RenderOptions {
   ShadowMethod shadows = ShadowMethod::kVoxel;
   uint32_t shadow_resolution = 256;       // columns along the longer side of the light's grid (and its slabs)
@@ -78,7 +80,7 @@ struct TechniqueDescription {
 struct FrameContext {
   ClRuntime* cl = nullptr;
   const TriangleSoup* soup = nullptr;          // the scene's triangles, anchor-relative
-  const DeviceMesh* mesh = nullptr;            // the soup on the device
+  const DeviceMesh* mesh = nullptr;            // the soup on the device: the scene's one device copy
   const cl::Buffer* vertex_normals = nullptr;  // one float4 per soup vertex (render/vertex_normals.h)
   const std::vector<glm::vec3>* host_normals = nullptr;  // the same on the host
   const cl::Buffer* materials = nullptr;                 // material_count RenderMaterial
@@ -155,25 +157,30 @@ class RefractionTechnique {
 
 // Registry rows: the factory of each name-table row, in the tables' order (static_asserts in
 // technique.cpp keep them aligned).
+// A factory gets the device and the device's one Voxelizer (FrameRenderer's), which the techniques that
+// voxelize share: one set of voxelizer scratch buffers per device.
 struct ShadowTechniqueRow {
   ShadowMethod method;
-  std::unique_ptr<ShadowTechnique> (*make)(ClRuntime& cl);
+  std::unique_ptr<ShadowTechnique> (*make)(ClRuntime& cl, Voxelizer& voxelizer);
 };
 struct RefractionTechniqueRow {
   RefractionMethod method;
-  std::unique_ptr<RefractionTechnique> (*make)(ClRuntime& cl);
+  std::unique_ptr<RefractionTechnique> (*make)(ClRuntime& cl, Voxelizer& voxelizer);
 };
 
 // The factories, one per technique file in render/techniques/.
-std::unique_ptr<ShadowTechnique> make_voxel_shadows(ClRuntime& cl);      // voxel, uniform
-std::unique_ptr<ShadowTechnique> make_light_map_shadows(ClRuntime& cl);  // filter, opaque
-std::unique_ptr<ShadowTechnique> make_reference_shadows(ClRuntime& cl);
-std::unique_ptr<ShadowTechnique> make_no_shadows(ClRuntime& cl);
-std::unique_ptr<RefractionTechnique> make_voxel_refraction(ClRuntime& cl);  // voxel-multi, voxel-two
-std::unique_ptr<RefractionTechnique> make_image_space_refraction(ClRuntime& cl);
-std::unique_ptr<RefractionTechnique> make_distance_map_refraction(ClRuntime& cl);
-std::unique_ptr<RefractionTechnique> make_reference_refraction(ClRuntime& cl);  // reference, reference-full
-std::unique_ptr<RefractionTechnique> make_no_refraction(ClRuntime& cl);
+std::unique_ptr<ShadowTechnique> make_voxel_shadows(ClRuntime& cl, Voxelizer& voxelizer);  // voxel, uniform
+std::unique_ptr<ShadowTechnique> make_light_map_shadows(ClRuntime& cl,
+                                                        Voxelizer& voxelizer);  // filter, opaque
+std::unique_ptr<ShadowTechnique> make_reference_shadows(ClRuntime& cl, Voxelizer& voxelizer);
+std::unique_ptr<ShadowTechnique> make_no_shadows(ClRuntime& cl, Voxelizer& voxelizer);
+std::unique_ptr<RefractionTechnique> make_voxel_refraction(ClRuntime& cl,
+                                                           Voxelizer& voxelizer);  // voxel-multi, voxel-two
+std::unique_ptr<RefractionTechnique> make_image_space_refraction(ClRuntime& cl, Voxelizer& voxelizer);
+std::unique_ptr<RefractionTechnique> make_distance_map_refraction(ClRuntime& cl, Voxelizer& voxelizer);
+std::unique_ptr<RefractionTechnique> make_reference_refraction(
+    ClRuntime& cl, Voxelizer& voxelizer);  // reference, reference-full
+std::unique_ptr<RefractionTechnique> make_no_refraction(ClRuntime& cl, Voxelizer& voxelizer);
 
 inline constexpr std::array<ShadowTechniqueRow, 6> kShadowTechniques = {{
     {ShadowMethod::kVoxel, make_voxel_shadows},
@@ -194,7 +201,9 @@ inline constexpr std::array<RefractionTechniqueRow, 7> kRefractionTechniques = {
 }};
 
 // The technique of `method` (its registry row's factory).
-std::unique_ptr<ShadowTechnique> make_shadow_technique(ClRuntime& cl, ShadowMethod method);
-std::unique_ptr<RefractionTechnique> make_refraction_technique(ClRuntime& cl, RefractionMethod method);
+std::unique_ptr<ShadowTechnique> make_shadow_technique(ClRuntime& cl, Voxelizer& voxelizer,
+                                                       ShadowMethod method);
+std::unique_ptr<RefractionTechnique> make_refraction_technique(ClRuntime& cl, Voxelizer& voxelizer,
+                                                               RefractionMethod method);
 
 }  // namespace voxr

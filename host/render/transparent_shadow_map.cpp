@@ -27,7 +27,8 @@ VoxelizeOptions voxelize_options(const ShadowMapOptions& options) {
 
 }  // namespace
 
-TransparentShadowMap::TransparentShadowMap(ClRuntime& cl) : cl_(cl), voxelizer_(cl) {}
+TransparentShadowMap::TransparentShadowMap(ClRuntime& cl, Voxelizer& voxelizer)
+    : cl_(cl), voxelizer_(voxelizer) {}
 
 void TransparentShadowMap::prepare(const ShadowMapOptions& options) {
   voxelizer_.prepare(voxelize_options(options));
@@ -76,22 +77,30 @@ uint64_t TransparentShadowMap::device_bytes() const {
   return grid_.device_bytes() + volume_.bytes + tails_.bytes;
 }
 
-glm::vec3 uniform_optical_depth(const TriangleSoup& soup, const std::vector<Material>& materials,
-                                float voxel_length) {
-  glm::dvec3 sum(0.0);
-  uint64_t n = 0;
+UniformAbsorption uniform_absorption(const TriangleSoup& soup, const std::vector<Material>& materials) {
+  UniformAbsorption u;
   for (const glm::uvec4& t : soup.triangles) {
     if (t.w >= materials.size()) continue;
     const Material& m = materials[t.w];
     if (m.kind == MaterialKind::kSheet) {
-      sum += -glm::log(glm::max(glm::dvec3(m.transmittance), glm::dvec3(1e-30)));
-      ++n;
+      u.sheet_depth += -glm::log(glm::max(glm::dvec3(m.transmittance), glm::dvec3(1e-30)));
+      ++u.triangles;
     } else if (m.kind == MaterialKind::kDielectric) {
-      sum += glm::dvec3(m.absorption) * double(voxel_length);
-      ++n;
+      u.absorption += glm::dvec3(m.absorption);
+      ++u.triangles;
     }
   }
-  return n == 0 ? glm::vec3(0.0f) : glm::vec3(sum / double(n));
+  return u;
+}
+
+glm::vec3 UniformAbsorption::at(float voxel_length) const {
+  if (triangles == 0) return glm::vec3(0.0f);
+  return glm::vec3((sheet_depth + absorption * double(voxel_length)) / double(triangles));
+}
+
+glm::vec3 uniform_optical_depth(const TriangleSoup& soup, const std::vector<Material>& materials,
+                                float voxel_length) {
+  return uniform_absorption(soup, materials).at(voxel_length);
 }
 
 }  // namespace voxr

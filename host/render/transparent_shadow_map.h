@@ -37,9 +37,22 @@ struct ShadowMapOptions {
   float normal_offset = kDefaultNormalOffset;
 };
 
+// The uniform method's absorption constant before the light grid's voxel length is known: sums over the
+// scene's transparent triangles, taken once per scene.
+struct UniformAbsorption {
+  glm::dvec3 sheet_depth{0.0};  // sum of -ln transmittance over sheet triangles
+  glm::dvec3 absorption{0.0};   // sum of sigma_a over dielectric triangles
+  uint64_t triangles = 0;       // transparent triangles
+  // The mean per-crossing optical depth with dielectrics `voxel_length` thick.
+  glm::vec3 at(float voxel_length) const;
+};
+UniformAbsorption uniform_absorption(const TriangleSoup& soup, const std::vector<Material>& materials);
+
 class TransparentShadowMap {
  public:
-  explicit TransparentShadowMap(ClRuntime& cl);
+  // Voxelizes with `voxelizer` (the device's one, shared with the other techniques: one set of scratch
+  // buffers).
+  TransparentShadowMap(ClRuntime& cl, Voxelizer& voxelizer);
 
   // Builds (or loads) the voxelizer's and the shadow kernels' programs for `options`.
   void prepare(const ShadowMapOptions& options);
@@ -62,7 +75,7 @@ class TransparentShadowMap {
 
  private:
   ClRuntime& cl_;
-  Voxelizer voxelizer_;
+  Voxelizer& voxelizer_;
   DeviceVoxelGrid grid_;
   GrowingBuffer volume_, tails_;  // transmittance per slab up to each column's last change; the rest
   LightFrame frame_;
@@ -71,6 +84,7 @@ class TransparentShadowMap {
 // The uniform method's one absorption constant: the mean per-crossing optical depth of the scene's
 // transparent triangles (sheet: -ln transmittance; dielectric: sigma_a x one voxel of the light grid), RGB.
 // Opaque triangles are not in the mean, though their voxels count like any other (the method cannot tell).
+// uniform_absorption(soup, materials).at(voxel_length); the frame takes the sums once per scene.
 glm::vec3 uniform_optical_depth(const TriangleSoup& soup, const std::vector<Material>& materials,
                                 float voxel_length);
 

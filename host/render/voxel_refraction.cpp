@@ -25,7 +25,7 @@ VoxelizeOptions voxelize_options() {
 
 }  // namespace
 
-VoxelRefraction::VoxelRefraction(ClRuntime& cl) : cl_(cl), voxelizer_(cl) {}
+VoxelRefraction::VoxelRefraction(ClRuntime& cl, Voxelizer& voxelizer) : cl_(cl), voxelizer_(voxelizer) {}
 VoxelRefraction::~VoxelRefraction() = default;
 
 void VoxelRefraction::prepare(const RefractionOptions&) {
@@ -33,9 +33,12 @@ void VoxelRefraction::prepare(const RefractionOptions&) {
   cl_.build_programs({{"refract_voxel.cl", channel_defines()}});
 }
 
-void VoxelRefraction::set_scene(const TriangleSoup& soup) {
+void VoxelRefraction::set_scene(const TriangleSoup& soup, const DeviceMesh& scene_mesh) {
   soup_ = &soup;
+  scene_mesh_ = &scene_mesh;
+  bounds_ = scene_mesh.bounds();
   mesh_.reset();
+  voxelized_ = nullptr;
 }
 
 void VoxelRefraction::build(const RefractionOptions& options) {
@@ -45,14 +48,15 @@ void VoxelRefraction::build(const RefractionOptions& options) {
          options.resolution);
   GridRequest request;
   request.resolution = options.resolution;
-  const GridSpec spec = fit_grid(soup_->bounds(), request, soup_->anchor);
+  const GridSpec spec = fit_grid(bounds_, request, soup_->anchor);
   // The split mesh depends on the grid only: reuse it while the scene and the grid stay.
-  if (!mesh_ || mesh_grid_.dims != spec.dims || mesh_grid_.voxel_size != spec.voxel_size ||
+  if (!voxelized_ || mesh_grid_.dims != spec.dims || mesh_grid_.voxel_size != spec.voxel_size ||
       mesh_grid_.origin != spec.origin) {
-    mesh_ = std::make_unique<DeviceMesh>(upload_mesh(cl_, *soup_, spec, SplitCull::kGrid));
+    mesh_ = upload_split_mesh(cl_, *soup_, spec, SplitCull::kGrid);
+    voxelized_ = mesh_ ? mesh_.get() : scene_mesh_;
     mesh_grid_ = spec;
   }
-  voxelizer_.run(*mesh_, spec, voxelize_options(), grid_);
+  voxelizer_.run(*voxelized_, spec, voxelize_options(), grid_);
   if (!grid_.has_rank_index) build_rank_index(cl_, grid_);
 
   for (int a = 0; a < 3; ++a) brick_dims_[a] = (spec.dims[a] + VOXR_BRICK - 1) / VOXR_BRICK;

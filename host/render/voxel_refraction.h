@@ -35,14 +35,18 @@ namespace voxr {
 
 class VoxelRefraction {
  public:
-  explicit VoxelRefraction(ClRuntime& cl);
+  // Voxelizes with `voxelizer` (the device's one, shared with the other techniques: one set of scratch
+  // buffers).
+  VoxelRefraction(ClRuntime& cl, Voxelizer& voxelizer);
   ~VoxelRefraction();
 
   // Builds (or loads) the voxelizer's and the march's programs.
   void prepare(const RefractionOptions& options);
 
   // The scene of the next frames (anchor-relative; must stay alive and unchanged until the next set_scene).
-  void set_scene(const TriangleSoup& soup);
+  // `scene_mesh` is the soup already on the device (it must stay alive as long): voxelized as it is unless
+  // the grid needs triangles split, so the scene has one device copy.
+  void set_scene(const TriangleSoup& soup, const DeviceMesh& scene_mesh);
 
   // Voxelizes the scene on a grid of options.resolution voxels along its longest side (occupancy, normal
   // sum, material), on the device. Throws voxr::Error when no scene was set or the grid does not fit.
@@ -59,12 +63,15 @@ class VoxelRefraction {
 
  private:
   ClRuntime& cl_;
-  Voxelizer voxelizer_;
+  Voxelizer& voxelizer_;
   DeviceVoxelGrid grid_;
   const TriangleSoup* soup_ = nullptr;
-  std::unique_ptr<DeviceMesh> mesh_;  // split for grid_.spec
-  GridSpec mesh_grid_;                // the grid mesh_ was split for
-  GrowingBuffer bricks_;              // one bit per VOXR_BRICK^3 voxels: empty space the march skips
+  Bounds bounds_;                           // the scene's, taken once by set_scene
+  const DeviceMesh* scene_mesh_ = nullptr;  // the scene's own device mesh, shared
+  std::unique_ptr<DeviceMesh> mesh_;        // split for mesh_grid_, when the grid needs triangles split
+  const DeviceMesh* voxelized_ = nullptr;   // mesh_ or scene_mesh_
+  GridSpec mesh_grid_;                      // the grid voxelized_ was chosen for
+  GrowingBuffer bricks_;                    // one bit per VOXR_BRICK^3 voxels: empty space the march skips
   glm::uvec3 brick_dims_{0};
 
   VoxelRefractParams params(const RefractionOptions& options) const;

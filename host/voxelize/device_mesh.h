@@ -20,9 +20,17 @@ class DeviceMesh {
   // `bounds`, when given, must contain the soup's used vertices (it saves a pass over them). Throws
   // voxr::Error beyond 2^32-1 triangles.
   DeviceMesh(ClRuntime& cl, const TriangleSoup& soup, const Bounds* bounds = nullptr);
+  // A mesh built on the device (e.g. the light's mesh, render/light_frame.h): `count` triangles in
+  // `triangles` (uint4: indices into `positions`, material) whose used vertices lie in `bounds`;
+  // `triangles_split` input triangles were split to make it. Nothing is copied.
+  DeviceMesh(cl::Buffer positions, cl::Buffer triangles, uint32_t count, const Bounds& bounds,
+             uint64_t triangles_split);
 
   uint32_t triangle_count() const { return triangle_count_; }
   const Bounds& bounds() const { return bounds_; }  // world bounds of the input's used vertices (snap_margin)
+  const glm::dvec3& anchor() const {
+    return anchor_;
+  }  // the soup's anchor (0 for a mesh built on the device)
   const cl::Buffer& positions() const { return positions_; }
   const cl::Buffer& triangles() const { return triangles_; }
   uint64_t triangles_split() const { return triangles_split_; }  // set by upload_mesh
@@ -30,11 +38,13 @@ class DeviceMesh {
   bool in_place() const { return in_place_; }                    // the device reads the host arrays
 
  private:
-  friend DeviceMesh upload_mesh(ClRuntime&, const TriangleSoup&, const GridSpec&, SplitCull, const Bounds*);
+  friend std::unique_ptr<DeviceMesh> upload_split_mesh(ClRuntime&, const TriangleSoup&, const GridSpec&,
+                                                       SplitCull, const Bounds*);
   cl::Buffer positions_;
   cl::Buffer triangles_;
   uint32_t triangle_count_ = 0;
   Bounds bounds_;
+  glm::dvec3 anchor_{0.0};
   uint64_t triangles_split_ = 0;
   double upload_ms_ = 0.0;
   bool in_place_ = false;
@@ -49,5 +59,9 @@ class DeviceMesh {
 // keeps one soup per frame in flight); split pieces are owned by the mesh.
 DeviceMesh upload_mesh(ClRuntime& cl, const TriangleSoup& soup, const GridSpec& grid, SplitCull cull,
                        const Bounds* bounds = nullptr);
+// upload_mesh's mesh when some triangle needs splitting for `grid`, else nullptr: the soup's own device mesh
+// (uploaded once, shared) serves as it is.
+std::unique_ptr<DeviceMesh> upload_split_mesh(ClRuntime& cl, const TriangleSoup& soup, const GridSpec& grid,
+                                              SplitCull cull, const Bounds* bounds = nullptr);
 
 }  // namespace voxr

@@ -43,7 +43,7 @@ class DistanceMapTechnique final : public RefractionTechnique {
 
 }  // namespace
 
-std::unique_ptr<RefractionTechnique> make_distance_map_refraction(ClRuntime& cl) {
+std::unique_ptr<RefractionTechnique> make_distance_map_refraction(ClRuntime& cl, Voxelizer&) {
   return std::make_unique<DistanceMapTechnique>(cl);
 }
 

@@ -43,7 +43,7 @@ class ImageSpaceTechnique final : public RefractionTechnique {
 
 }  // namespace
 
-std::unique_ptr<RefractionTechnique> make_image_space_refraction(ClRuntime& cl) {
+std::unique_ptr<RefractionTechnique> make_image_space_refraction(ClRuntime& cl, Voxelizer&) {
   return std::make_unique<ImageSpaceTechnique>(cl);
 }
 

@@ -18,7 +18,7 @@ class NoRefraction final : public RefractionTechnique {
 
 }  // namespace
 
-std::unique_ptr<RefractionTechnique> make_no_refraction(ClRuntime& cl) {
+std::unique_ptr<RefractionTechnique> make_no_refraction(ClRuntime& cl, Voxelizer&) {
   return std::make_unique<NoRefraction>(cl);
 }
 

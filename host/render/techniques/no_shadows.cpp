@@ -21,7 +21,7 @@ class NoShadows final : public ShadowTechnique {
 
 }  // namespace
 
-std::unique_ptr<ShadowTechnique> make_no_shadows(ClRuntime& cl) {
+std::unique_ptr<ShadowTechnique> make_no_shadows(ClRuntime& cl, Voxelizer&) {
   return std::make_unique<NoShadows>(cl);
 }
 

@@ -39,7 +39,7 @@ class ReferenceRefraction final : public RefractionTechnique {
 
 }  // namespace
 
-std::unique_ptr<RefractionTechnique> make_reference_refraction(ClRuntime& cl) {
+std::unique_ptr<RefractionTechnique> make_reference_refraction(ClRuntime& cl, Voxelizer&) {
   return std::make_unique<ReferenceRefraction>(cl);
 }
 

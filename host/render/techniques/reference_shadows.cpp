@@ -35,7 +35,7 @@ class ReferenceShadows final : public ShadowTechnique {
 
 }  // namespace
 
-std::unique_ptr<ShadowTechnique> make_reference_shadows(ClRuntime& cl) {
+std::unique_ptr<ShadowTechnique> make_reference_shadows(ClRuntime& cl, Voxelizer&) {
   return std::make_unique<ReferenceShadows>(cl);
 }
 

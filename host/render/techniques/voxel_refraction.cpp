@@ -13,11 +13,11 @@ namespace {
 
 class VoxelRefractionTechnique final : public RefractionTechnique {
  public:
-  explicit VoxelRefractionTechnique(ClRuntime& cl) : refraction_(cl) {}
+  VoxelRefractionTechnique(ClRuntime& cl, Voxelizer& voxelizer) : refraction_(cl, voxelizer) {}
 
   std::vector<ProgramSpec> programs(const RenderOptions&) const override { return {}; }
   void prepare(const RenderOptions& options) override { refraction_.prepare(options.refraction); }
-  void set_scene(const FrameContext& ctx) override { refraction_.set_scene(*ctx.soup); }
+  void set_scene(const FrameContext& ctx) override { refraction_.set_scene(*ctx.soup, *ctx.mesh); }
   bool writes_ends() const override { return true; }
 
   void trace(const FrameContext& ctx, const RenderOptions& options, cl::Buffer& ends,
@@ -54,8 +54,8 @@ class VoxelRefractionTechnique final : public RefractionTechnique {
 
 }  // namespace
 
-std::unique_ptr<RefractionTechnique> make_voxel_refraction(ClRuntime& cl) {
-  return std::make_unique<VoxelRefractionTechnique>(cl);
+std::unique_ptr<RefractionTechnique> make_voxel_refraction(ClRuntime& cl, Voxelizer& voxelizer) {
+  return std::make_unique<VoxelRefractionTechnique>(cl, voxelizer);
 }
 
 }  // namespace voxr

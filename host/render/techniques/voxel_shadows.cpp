@@ -1,15 +1,15 @@
 // Transparent shadow maps from a light-space voxel grid (render/transparent_shadow_map.h): voxel (Chang &
 // Lai, TR 1688 §4.1, PG 2011 §4: per-voxel optical depth from the write count and material) and uniform
 // (Eisemann & Decoret, I3D 2006 §5: slicemap occupancy x one absorption constant). One frame: fit the light's
-// grid to what the camera sees, project the casters into a point light's frustum, upload them split for the
-// grid, voxelize and accumulate transmittance (build); look it up at the path ends (lookup). The light grid
-// and the light mesh depend only on the scene's triangles, the light's position or direction, the bounds the
-// camera sees and the resolution: while none of these changes (a static scene, camera and light) they are
-// kept from the frame before, and the frame re-voxelizes the kept light mesh; set_scene (every frame of a
-// deforming scene) starts over.
+// grid to what the camera sees, project the casters into a point light's frustum, near-clip them and split
+// those too long for the grid, all on the device from the scene's one device mesh (DeviceLightFrame: no host
+// pass over triangles), voxelize with the device's one voxelizer and accumulate transmittance (build); look
+// it up at the path ends (lookup). The light grid and the light mesh depend only on the scene's triangles,
+// the light's position or direction, the bounds the camera sees and the resolution: while none of these
+// changes (a static scene, camera and light) they are kept from the frame before, and the frame re-voxelizes
+// the kept light mesh; set_scene (every frame of a deforming scene) starts over.
 #include <fmt/format.h>
 
-#include <cstring>
 #include <optional>
 
 #include "render/technique.h"
@@ -31,35 +31,34 @@ ShadowMapOptions shadow_map_options(const RenderOptions& o) {
 
 class VoxelShadows final : public ShadowTechnique {
  public:
-  explicit VoxelShadows(ClRuntime& cl) : map_(cl) {}
+  VoxelShadows(ClRuntime& cl, Voxelizer& voxelizer) : map_(cl, voxelizer), device_frame_(cl) {}
 
-  std::vector<ProgramSpec> programs(const RenderOptions&) const override { return {}; }
+  std::vector<ProgramSpec> programs(const RenderOptions&) const override { return device_frame_.programs(); }
   void prepare(const RenderOptions& options) override { map_.prepare(shadow_map_options(options)); }
 
   void set_scene(const FrameContext& ctx) override {
-    scene_bounds_ = ctx.soup->bounds();
+    scene_bounds_ = ctx.mesh->bounds();
+    uniform_ = uniform_absorption(*ctx.soup, *ctx.host_materials);  // per scene: no frame makes the pass
     kept_.reset();
-    light_mesh_.reset();
+    light_mesh_ = nullptr;
   }
 
   void build(const FrameContext& ctx, const RenderOptions& options) override {
     FrameStats& st = *ctx.stats;
+    // Host work: the launches and the fit's arithmetic, less the two waits for the counts they read back.
     const auto host_start = Clock::now();
+    const double waited_before = ctx.cl->sync_ms();
     const Bounds receivers = visible_bounds(scene_bounds_, *ctx.camera);
-    const LightMeshKey key{*ctx.light, receivers, options.shadow_resolution, options.shadows};
+    const LightMeshKey key{{*ctx.light, receivers, options.shadow_resolution}, options.shadows};
     if (!kept_ || !(*kept_ == key)) {
-      light_mesh_.reset();  // before the soup its buffers may use in place
-      frame_ = fit_light_frame(*ctx.light, receivers, *ctx.soup, options.shadow_resolution);
-      projected_ = frame_.projective() ? project_to_light_grid(*ctx.soup, frame_) : TriangleSoup();
-      light_mesh_.emplace(
-          upload_mesh(*ctx.cl, frame_.projective() ? projected_ : *ctx.soup, frame_.grid, SplitCull::kGrid));
-      tau_ = options.shadows == ShadowMethod::kUniform
-                 ? uniform_optical_depth(*ctx.soup, *ctx.host_materials, frame_.mean_slab_length())
-                 : glm::vec3(0.0f);
+      frame_ = device_frame_.fit(*ctx.light, receivers, *ctx.mesh, options.shadow_resolution);
+      light_mesh_ = &device_frame_.light_mesh(*ctx.mesh);
+      tau_ = options.shadows == ShadowMethod::kUniform ? uniform_.at(frame_.mean_slab_length())
+                                                       : glm::vec3(0.0f);
       kept_ = key;
     }
     st.light = frame_;
-    st.host_ms += ms_since(host_start);
+    st.host_ms += ms_since(host_start) - (ctx.cl->sync_ms() - waited_before);
     st.light_triangles = light_mesh_->triangle_count();
     map_.build(*light_mesh_, frame_, *ctx.materials, ctx.material_count, tau_, shadow_map_options(options));
     st.device_bytes = map_.device_bytes();
@@ -85,33 +84,26 @@ class VoxelShadows final : public ShadowTechnique {
  private:
   // What the kept light grid and mesh were made from.
   struct LightMeshKey {
-    RenderLight light;
-    Bounds receivers;
-    uint32_t resolution;
+    LightFitKey fit;
     ShadowMethod method;
-    bool operator==(const LightMeshKey& o) const {
-      const auto same3 = [](const float* a, const float* b) {
-        return std::memcmp(a, b, 3 * sizeof(float)) == 0;
-      };
-      return light.directional == o.light.directional && same3(light.position, o.light.position) &&
-             same3(light.direction, o.light.direction) && receivers.lo == o.receivers.lo &&
-             receivers.hi == o.receivers.hi && resolution == o.resolution && method == o.method;
-    }
+    bool operator==(const LightMeshKey&) const = default;
   };
 
   TransparentShadowMap map_;
+  DeviceLightFrame device_frame_;
   Bounds scene_bounds_;
+  UniformAbsorption uniform_;  // the uniform method's sums over the scene's transparent triangles
   std::optional<LightMeshKey> kept_;
   LightFrame frame_;
-  TriangleSoup projected_;  // a point light's projected casters, read in place by light_mesh_
-  std::optional<DeviceMesh> light_mesh_;
+  // device_frame_'s light mesh, or for a directional light with nothing to split the scene's own mesh
+  const DeviceMesh* light_mesh_ = nullptr;
   glm::vec3 tau_{0.0f};
 };
 
 }  // namespace
 
-std::unique_ptr<ShadowTechnique> make_voxel_shadows(ClRuntime& cl) {
-  return std::make_unique<VoxelShadows>(cl);
+std::unique_ptr<ShadowTechnique> make_voxel_shadows(ClRuntime& cl, Voxelizer& voxelizer) {
+  return std::make_unique<VoxelShadows>(cl, voxelizer);
 }
 
 }  // namespace voxr
