@@ -85,19 +85,31 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
   cl::Buffer dummy = scratch("unused channel", 4);
 
   // Which triangles go through the copy records: the large ones the direct pass lists (hybrid), or all.
+  // With deferred counts the list's length stays on the device (`large`) and the stages after it run over
+  // a capacity: the last length with headroom, at most every triangle.
   uint64_t listed = tris;
-  cl::Buffer list = dummy;
+  cl::Buffer list = dummy, large = dummy;
   if (hybrid && tris > 0) {
     list = scratch("the large-triangle list", tris * 4);
-    cl::Buffer count = scratch("the large-triangle count", 4);
-    cl_.fill_zero(count, 4, "clear");
+    large = scratch("the large-triangle count", 4);
+    cl_.fill_zero(large, 4, "clear");
     cl::Kernel direct = cl_.kernel("vox_direct.cl", "vox_direct", with(base, "VOX_PASS", "0"));
     cl_.launch("direct", direct, tris, kGroup, make_grid_params(grid, uint32_t(tris), margin),
-               mesh.positions(), mesh.triangles(), list, count, occ, dummy, dummy, dummy);
-    cl_uint large = 0;
-    cl_.download(count, &large, 4, "readback large-triangle count");
-    listed = large;
-    stats.direct_triangles = tris - large;
+               mesh.positions(), mesh.triangles(), list, large, occ, dummy, dummy, dummy);
+    if (cl_.counts_deferred() && listed_capacity_ > 0) {
+      listed = std::min(listed_capacity_, tris);
+      cl_.read_count_later(large, 4, "readback large-triangle count", [this, listed](uint64_t count) {
+        if (count <= listed) return true;
+        listed_capacity_ = ClRuntime::with_headroom(count);
+        return false;
+      });
+    } else {
+      cl_uint count = 0;
+      cl_.download(large, &count, 4, "readback large-triangle count");
+      listed = count;
+      listed_capacity_ = ClRuntime::with_headroom(listed);
+    }
+    stats.direct_triangles = tris - listed;
   }
   const VoxGridParams params =
       make_grid_params(grid, uint32_t(listed), margin, options.rows_per_copy, channels);
@@ -110,9 +122,9 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     cl_.fill_zero(too_large, 4, "clear");
     cl::Kernel setup =
         cl_.kernel("vox_setup.cl", "vox_setup", with(base, "VOX_SETUP_LIST", hybrid ? "1" : "0"));
-    cl_.launch("setup", setup, listed, kGroup, params, mesh.positions(), mesh.triangles(), list, snapped,
-               copies_.counts(), copies_.boxes(), too_large);
-    if (!grid_method) copies_.scan(cl_, options.record_budget_bytes, "scan");
+    cl_.launch("setup", setup, listed, kGroup, params, mesh.positions(), mesh.triangles(), list, large,
+               snapped, copies_.counts(), copies_.boxes(), too_large);
+    if (!grid_method) copies_.scan(cl_, options.record_budget_bytes, "scan", true);
     expect_no_oversized(cl_, too_large, "split check");
   }
   const uint64_t copies = copies_.records();
@@ -133,8 +145,8 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     }
     cl::Kernel raster = cl_.kernel("vox_raster.cl", "vox_raster", p);
     copies_.for_each_batch(cl_, "expand", [&](const cl::Buffer& records, uint32_t count) {
-      cl_.launch(name, raster, count, kGroup, params, snapped, records, cl_uint(count), occ, ranked, acc,
-                 material);
+      cl_.launch(name, raster, count, kGroup, params, snapped, records, copies_.window_records(), occ, ranked,
+                 acc, material);
     });
   };
   raster_listed("raster", 0, dummy, dummy, dummy);
