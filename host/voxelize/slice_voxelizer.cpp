@@ -132,8 +132,8 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
   // Rasterizes the listed triangles with one pass of the kernels: batches of expanded copy records (a
   // single batch is expanded once and reused by the second pass), or for the Grid baseline one launch per
   // slab.
-  auto raster_listed = [&](const char* name, int pass, const cl::Buffer& ranked, const cl::Buffer& acc,
-                           const cl::Buffer& material) {
+  auto raster_listed = [&](const char* name, int pass, const VoxGridParams& params, const cl::Buffer& ranked,
+                           const cl::Buffer& acc, const cl::Buffer& material) {
     const Defines p = with(base, "VOX_PASS", std::to_string(pass));
     if (listed == 0) return;
     if (grid_method) {
@@ -149,13 +149,28 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
                  acc, material);
     });
   };
-  raster_listed("raster", 0, dummy, dummy, dummy);
+  raster_listed("raster", 0, params, dummy, dummy, dummy);
 
   if (options.channels.sparse()) {
     progress("attributes");
-    build_rank_index(cl_, out);
-    const uint64_t set = out.voxels_set;
+    // The sparse channels' entries: the set voxels, or with deferred counts a capacity (the last total with
+    // headroom; the kernels drop ranks past it and stop at the true total on the device).
+    cl::Buffer set_total = scratch("the set-voxel total", 8);
+    build_rank_index(cl_, out, set_total);
+    uint64_t set = 0;
+    if (cl_.counts_deferred() && set_capacity_ > 0) {
+      set = set_capacity_;
+      cl_.read_count_later(set_total, 8, "readback rank total", [this](uint64_t total) {
+        if (total <= set_capacity_) return true;
+        set_capacity_ = std::min<uint64_t>(ClRuntime::with_headroom(total), 0xffffffffull);
+        return false;
+      });
+    } else {
+      cl_.download(set_total, &set, 8, "readback rank total");
+      set_capacity_ = std::min<uint64_t>(ClRuntime::with_headroom(set), 0xffffffffull);
+    }
     if (set > 0xffffffffull) fail("{} set voxels exceed the 2^32 limit of the attribute channels", set);
+    out.voxels_set = set;
     cl::Buffer acc = dummy;
     if (packed) {
       acc = scratch("the count/normal accumulators", set * 16);
@@ -169,11 +184,14 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     const cl::Buffer& ranked = out.ranked.buffer;
     if (hybrid && tris > 0) {
       cl::Kernel direct = cl_.kernel("vox_direct.cl", "vox_direct", with(base, "VOX_PASS", "1"));
-      cl_.launch("attributes", direct, tris, kGroup,
-                 make_grid_params(grid, uint32_t(tris), margin, 1, channels), mesh.positions(),
-                 mesh.triangles(), list, dummy, occ, ranked, acc, material);
+      VoxGridParams direct_params = make_grid_params(grid, uint32_t(tris), margin, 1, channels);
+      direct_params.dims[3] = uint32_t(set);
+      cl_.launch("attributes", direct, tris, kGroup, direct_params, mesh.positions(), mesh.triangles(), list,
+                 dummy, occ, ranked, acc, material);
     }
-    raster_listed("attributes", 1, ranked, acc, material);
+    VoxGridParams attribute_params = params;
+    attribute_params.dims[3] = uint32_t(set);
+    raster_listed("attributes", 1, attribute_params, ranked, acc, material);
 
     if (packed) {
       const bool normals = options.channels.has(Channel::kNormal);
@@ -182,7 +200,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
       cl::Buffer nsum = normals ? out.normal_sum.ensure(cl_, set * 12, "the normal sums") : dummy;
       cl::Buffer normal = normals ? out.normal.ensure(cl_, set * 12, "the normal channel") : dummy;
       cl::Kernel finalize = cl_.kernel("vox_finalize.cl", "vox_finalize", base);
-      cl_.launch("finalize", finalize, set, kGroup, acc, count, nsum, normal, cl_uint(set),
+      cl_.launch("finalize", finalize, set, kGroup, acc, count, nsum, normal, cl_uint(set), set_total,
                  cl_uint(channels));
     }
   }

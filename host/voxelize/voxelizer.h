@@ -92,8 +92,8 @@ struct VoxelizeStats {
   uint64_t copies = 0;            // records: (triangle, slab, row block) copies or slicemap tiles
   uint64_t work_items = 0;        // raster work items: direct triangles + copies, or triangles x slabs (grid)
   uint64_t batches = 0;
-  // (With deferred counts, direct_triangles, copies, work_items and batches are those of the capacities the
-  // launches ran over: the true counts are checked after the caller's next wait.)
+  // (With deferred counts, direct_triangles, copies, work_items, batches and voxels_set are those of the
+  // capacities the launches ran over: the true counts are checked after the caller's next wait.)
   uint64_t voxels_set = 0;  // known when the run builds the rank index or reads back; 0 for a device-only
                             // occupancy run (build_rank_index or read_back gives it)
   uint32_t margin = 0;      // conservative: widening of voxel boxes, 1/VOXR_SUBVOXEL voxel units
