@@ -48,7 +48,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_depth(
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_depth_peel(
     uint width, uint height, __global const RasterPrim* prims, __global const CopyRecord* records,
-    __global const uint* record_count, __global const ulong* previous, uint epsilon_ulps, __global ulong* visibility) {
+    __global const uint* record_count, __global const ulong* previous, uint epsilon_ulps,
+    __global ulong* visibility) {
   const uint gid = get_global_id(0);
   if (gid >= *record_count) return;
   const CopyRecord rec = records[gid];

@@ -19,8 +19,8 @@
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_setup(
     VoxGridParams grid, __global const float4* positions, __global const uint4* triangles,
-    __global const uint* list, __global const uint* listed, __global VoxSnappedTriangle* snapped, __global uint* copy_counts,
-    __global CopyBox* copy_boxes, __global uint* too_large) {
+    __global const uint* list, __global const uint* listed, __global VoxSnappedTriangle* snapped,
+    __global uint* copy_counts, __global CopyBox* copy_boxes, __global uint* too_large) {
   const uint e = get_global_id(0);
   if (e >= grid.triangle_count) return;
   if (VOX_SETUP_LIST && e >= *listed) {
