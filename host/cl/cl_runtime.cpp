@@ -326,4 +326,31 @@ void ClRuntime::finish(const std::string& context) {
   sync_cpu_ms_ += thread_cpu_ms() - cpu_start;
 }
 
+void ClRuntime::read_count_later(const cl::Buffer& buffer, uint32_t bytes, const std::string& name,
+                                 std::function<bool(uint64_t)> check) {
+  VOXR_CHECK(bytes == 4 || bytes == 8);
+  auto pending = std::make_unique<PendingCount>();
+  pending->check = std::move(check);
+  download_later(buffer, &pending->value, bytes, name);
+  pending_counts_.push_back(std::move(pending));
+}
+
+bool ClRuntime::settle_counts() {
+  const std::vector<std::unique_ptr<PendingCount>> pending = std::move(pending_counts_);
+  pending_counts_.clear();
+  bool fits = true;
+  for (const std::unique_ptr<PendingCount>& p : pending) fits = p->check(p->value) && fits;
+  return fits;
+}
+
+void ClRuntime::discard_counts() {
+  if (pending_counts_.empty()) return;
+  try {
+    queue_.finish();
+  } catch (...) {
+    // already failing; the queue's error was or will be reported
+  }
+  pending_counts_.clear();
+}
+
 }  // namespace voxr

@@ -6,7 +6,9 @@
 #include <CL/opencl.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -91,6 +93,27 @@ class ClRuntime {
   // Waits for the queue, turns asynchronous failures into voxr::Error, resolves profiling events.
   void finish(const std::string& context = "running kernels");
 
+  // Counts read back together (issue 18: a frame reads its small counts with its last wait, not one wait
+  // each). While counts are deferred (set_counts_deferred(true): the frame renderer's frames), a stage whose
+  // launches depend on a count it produced on the device runs them over a capacity it kept from the run
+  // before (work items past the true count, read from the device, do nothing) and hands the count to
+  // read_count_later: the `bytes` (4 or 8) at `buffer` travel with the next wait, and settle_counts(),
+  // called after that wait, passes each to its `check`. A check grows a capacity the count exceeded and
+  // returns false: the work that ran over it must be redone. A stage whose capacity is not known yet (its
+  // first run) reads its count at once.
+  void set_counts_deferred(bool deferred) { counts_deferred_ = deferred; }
+  bool counts_deferred() const { return counts_deferred_; }
+  void read_count_later(const cl::Buffer& buffer, uint32_t bytes, const std::string& name,
+                        std::function<bool(uint64_t)> check);
+  // Runs the checks of the counts read so far (after a wait) and forgets them; false when any count
+  // exceeded its capacity. A check that throws (a count that must be 0 is not) throws from here.
+  bool settle_counts();
+  // The capacity a check grows to for a count of `count`: a quarter more, and slack for small counts.
+  static uint64_t with_headroom(uint64_t count) { return count + count / 4 + 1024; }
+  // Forgets the counts read so far without checking them (after a failure), once the queue is done with
+  // their host memory.
+  void discard_counts();
+
   // Host synchronisations so far: every finish, blocking upload or download and map (each waits for the
   // queue), and the milliseconds the host spent blocked in them. A frame's count is the difference.
   // Debug builds' per-launch checks are not counted.
@@ -127,6 +150,12 @@ class ClRuntime {
   std::map<std::string, cl::Program> programs_;  // by file and build options
   ProgramCache program_cache_;
   double build_ms_ = 0.0;
+  struct PendingCount {
+    uint64_t value = 0;  // a 4-byte count lands in the low half (little-endian host and device)
+    std::function<bool(uint64_t)> check;
+  };
+  bool counts_deferred_ = false;
+  std::vector<std::unique_ptr<PendingCount>> pending_counts_;  // stable addresses for the reads in flight
   uint64_t syncs_ = 0;
   double sync_ms_ = 0.0;
   double sync_cpu_ms_ = 0.0;

@@ -34,9 +34,24 @@ void RecordBins::prepare(ClRuntime& cl, uint64_t triangles) {
   offsets_.ensure(cl, triangles * sizeof(cl_ulong), "copy offsets");
 }
 
-void RecordBins::scan(ClRuntime& cl, uint64_t budget_bytes, const std::string& name) {
-  records_ = exclusive_scan(cl, ScanKind::kUintToUlong, counts_.buffer, offsets_.buffer, triangles_, name);
-  batch_ = std::min({records_, std::max<uint64_t>(1, budget_bytes / sizeof(CopyRecord)), kMaxBatch});
+void RecordBins::scan(ClRuntime& cl, uint64_t budget_bytes, const std::string& name, bool defer) {
+  cl::Buffer& total = total_.ensure(cl, sizeof(cl_ulong), "copy total");
+  exclusive_scan(cl, ScanKind::kUintToUlong, counts_.buffer, offsets_.buffer, triangles_, total, name);
+  const uint64_t most = std::min(std::max<uint64_t>(1, budget_bytes / sizeof(CopyRecord)), kMaxBatch);
+  if (defer && cl.counts_deferred() && capacity_ > 0 && capacity_ <= most) {
+    records_ = batch_ = capacity_;
+    cl.read_count_later(total, sizeof(cl_ulong), "readback " + name + " total", [this](uint64_t records) {
+      if (records <= capacity_) return true;
+      capacity_ = ClRuntime::with_headroom(records);
+      return false;
+    });
+    return;
+  }
+  cl_ulong records = 0;
+  cl.download(total, &records, sizeof(records), "readback " + name + " total");
+  records_ = records;
+  batch_ = std::min(records_, most);
+  capacity_ = ClRuntime::with_headroom(records_);
 }
 
 uint64_t RecordBins::device_bytes() const {
@@ -47,13 +62,14 @@ void RecordBins::for_each_batch(ClRuntime& cl, const std::string& name,
                                 const std::function<void(const cl::Buffer&, uint32_t)>& consume) {
   if (records_ == 0) return;
   cl::Buffer& records = records_buffer_.ensure(cl, batch_ * sizeof(CopyRecord), "copy records");
+  cl::Buffer& window_records = window_records_.ensure(cl, sizeof(cl_uint), "copy records in the batch");
   const bool single = batches() == 1;
   for (uint64_t begin = 0; begin < records_; begin += batch_) {
     const uint32_t count = uint32_t(std::min(batch_, records_ - begin));
     if (!(single && expanded_)) {
       cl::Kernel expand = cl.kernel("expand_copies.cl", "expand_copies", expand_defines());
       cl.launch(name, expand, count, kGroup, cl_uint(triangles_), offsets_.buffer, boxes_.buffer,
-                cl_ulong(begin), cl_uint(count), records);
+                total_.buffer, cl_ulong(begin), cl_uint(count), records, window_records);
       expanded_ = single;
     }
     consume(records, count);

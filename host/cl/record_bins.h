@@ -34,10 +34,14 @@ class RecordBins {
 
   // Scans the counts the setup kernel wrote, under the profiler name `name`, and waits for the record total
   // (one readback). Batches then hold at most `budget_bytes` of records (at least 1, at most kMaxBatch).
-  void scan(ClRuntime& cl, uint64_t budget_bytes, const std::string& name);
+  // With `defer` (and cl.counts_deferred()), once a capacity is known from an earlier scan and fits one
+  // batch, it does not wait: records() is the capacity, the one batch runs over it (the expand kernel
+  // stops at the true total on the device) and the total is checked against the capacity with the caller's
+  // next wait (ClRuntime::read_count_later; an exceeded capacity grows).
+  void scan(ClRuntime& cl, uint64_t budget_bytes, const std::string& name, bool defer = false);
 
   uint64_t triangles() const { return triangles_; }
-  uint64_t records() const { return records_; }      // all batches together
+  uint64_t records() const { return records_; }      // all batches together (deferred: the capacity)
   uint64_t batch_records() const { return batch_; }  // records per batch (the last may hold fewer)
   uint64_t batches() const { return batch_ == 0 ? 0 : (records_ + batch_ - 1) / batch_; }
   // Device bytes this binning uses: per triangle its count, box and offset; one batch of records.
@@ -45,14 +49,18 @@ class RecordBins {
 
   // Calls `consume(records, count)` once per batch, in order, with the batch's CopyRecords (record
   // window_begin + i at i) after expanding them under the profiler name `name`. A binning of one batch is
-  // expanded once: later calls reuse its records.
+  // expanded once: later calls reuse its records. `count` is exact unless the scan was deferred; the true
+  // count of the batch is on the device in window_records().
   void for_each_batch(ClRuntime& cl, const std::string& name,
                       const std::function<void(const cl::Buffer&, uint32_t)>& consume);
+  // The records of the batch consume() was last handed (uint), for a kernel whose launch may run past them.
+  const cl::Buffer& window_records() const { return window_records_.buffer; }
 
  private:
   uint64_t triangles_ = 0, records_ = 0, batch_ = 0;
+  uint64_t capacity_ = 0;  // records a deferred scan runs over: the last total with headroom (0: unknown)
   bool expanded_ = false;  // the single batch's records are in place
-  GrowingBuffer counts_, boxes_, offsets_, records_buffer_;
+  GrowingBuffer counts_, boxes_, offsets_, records_buffer_, total_, window_records_;
 };
 
 }  // namespace voxr

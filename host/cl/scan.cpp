@@ -37,24 +37,35 @@ std::vector<ProgramSpec> scan_programs() {
   return specs;
 }
 
+void exclusive_scan(ClRuntime& cl, ScanKind kind, const cl::Buffer& in, cl::Buffer& out, uint64_t n,
+                    cl::Buffer& total, const std::string& name) {
+  if (n == 0) {
+    cl.fill_zero(total, sizeof(cl_ulong), "clear");
+    return;
+  }
+  const Defines defines = scan_defines(kind);
+  const uint64_t tiles = (n + kTile - 1) / kTile;
+  cl::Kernel scan_tiles = cl.kernel("scan.cl", "scan_tiles", defines);
+  if (tiles == 1) {  // the one tile's total is the grand total
+    cl.launch(name, scan_tiles, kScanGroup, kScanGroup, in, out, total, cl_ulong(n));
+    return;
+  }
+  cl::Buffer tile_sums = cl.buffer(tiles * sizeof(cl_ulong), name + " tile totals");
+  cl.launch(name, scan_tiles, tiles * kScanGroup, kScanGroup, in, out, tile_sums, cl_ulong(n));
+  cl::Buffer tile_offsets = cl.buffer(tiles * sizeof(cl_ulong), name + " tile offsets");
+  exclusive_scan(cl, ScanKind::kUlongToUlong, tile_sums, tile_offsets, tiles, total, name);
+  cl::Kernel scan_add = cl.kernel("scan.cl", "scan_add", defines);
+  cl.launch(name, scan_add, tiles * kScanGroup, kScanGroup, out, tile_offsets, cl_ulong(n));
+}
+
 uint64_t exclusive_scan(ClRuntime& cl, ScanKind kind, const cl::Buffer& in, cl::Buffer& out, uint64_t n,
                         const std::string& name) {
   if (n == 0) return 0;
-  const Defines defines = scan_defines(kind);
-  const uint64_t tiles = (n + kTile - 1) / kTile;
-  cl::Buffer tile_sums = cl.buffer(tiles * sizeof(cl_ulong), name + " tile totals");
-  cl::Kernel scan_tiles = cl.kernel("scan.cl", "scan_tiles", defines);
-  cl.launch(name, scan_tiles, tiles * kScanGroup, kScanGroup, in, out, tile_sums, cl_ulong(n));
-  if (tiles == 1) {
-    cl_ulong total = 0;
-    cl.download(tile_sums, &total, sizeof(total), "readback " + name + " total");
-    return total;
-  }
-  cl::Buffer tile_offsets = cl.buffer(tiles * sizeof(cl_ulong), name + " tile offsets");
-  const uint64_t total = exclusive_scan(cl, ScanKind::kUlongToUlong, tile_sums, tile_offsets, tiles, name);
-  cl::Kernel scan_add = cl.kernel("scan.cl", "scan_add", defines);
-  cl.launch(name, scan_add, tiles * kScanGroup, kScanGroup, out, tile_offsets, cl_ulong(n));
-  return total;
+  cl::Buffer total = cl.buffer(sizeof(cl_ulong), name + " total");
+  exclusive_scan(cl, kind, in, out, n, total, name);
+  cl_ulong value = 0;
+  cl.download(total, &value, sizeof(value), "readback " + name + " total");
+  return value;
 }
 
 }  // namespace voxr

@@ -18,8 +18,12 @@ enum class ScanKind {
 // The programs exclusive_scan builds (every kind), for building them ahead of timed work.
 std::vector<ProgramSpec> scan_programs();
 
-// Scans `n` elements of `in` into `out` and returns the grand total (exact in 64 bits even where `out`
-// holds 32-bit values). Blocks until the total is known.
+// Scans `n` elements of `in` into `out` and writes the grand total (a ulong, exact in 64 bits even where
+// `out` holds 32-bit values) to `total` on the device, without waiting.
+void exclusive_scan(ClRuntime& cl, ScanKind kind, const cl::Buffer& in, cl::Buffer& out, uint64_t n,
+                    cl::Buffer& total, const std::string& name);
+
+// The same, returning the grand total: blocks until it is known.
 uint64_t exclusive_scan(ClRuntime& cl, ScanKind kind, const cl::Buffer& in, cl::Buffer& out, uint64_t n,
                         const std::string& name);
 

@@ -296,7 +296,8 @@ int run_render(const RenderArgs& args) {
                   {"programs", prepared.programs_ms},
                   {"wait", wait_ms}};
   if (!animated) report["ms"]["scene_setup"] = scene_setup_ms;
-  report["host_syncs"] = stats.host_syncs;  // waits for the device queue in the last frame
+  report["host_syncs"] = stats.host_syncs;                  // waits for the device queue in the last frame
+  report["capacity_rerenders"] = stats.capacity_rerenders;  // its tries made again (a count outgrew)
   shadow_description = prepared.engine->shadow_technique(options.shadows).describe(stats, options);
   refraction_description =
       prepared.engine->refraction_technique(options.refraction.method).describe(stats, options);

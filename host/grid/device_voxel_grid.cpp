@@ -93,6 +93,13 @@ void build_rank_index(ClRuntime& cl, DeviceVoxelGrid& grid) {
   grid.has_rank_index = true;
 }
 
+void build_rank_index(ClRuntime& cl, DeviceVoxelGrid& grid, cl::Buffer& total) {
+  const uint64_t words = grid.words();
+  cl::Buffer& ranked = grid.ranked.ensure(cl, words * 8, "the rank index");
+  exclusive_scan(cl, ScanKind::kRankedWords, grid.occ.buffer, ranked, words, total, "rank");
+  grid.has_rank_index = true;
+}
+
 VoxelGrid read_back(ClRuntime& cl, DeviceVoxelGrid& grid, BitWords* adopted_occ) {
   VoxelGrid out;
   out.spec = grid.spec;

@@ -46,7 +46,9 @@ class DeviceVoxelGrid {
  public:
   GridSpec spec;
   ChannelSet channels;          // the channels present
-  uint64_t voxels_set = 0;      // set voxels: the length of every sparse channel (valid with the rank index)
+  uint64_t voxels_set = 0;      // set voxels: the length of every sparse channel (valid with the rank index;
+                                // a frame with deferred counts: the capacity allocated, ranks past the true
+                                // total unused)
   uint64_t inside_voxels = 0;   // set inside bits (when channels has inside)
   bool has_rank_index = false;  // whether `ranked` describes the current occupancy
 
@@ -87,6 +89,9 @@ class DeviceVoxelGrid {
 
 // Builds the rank index from the occupancy (scan.cl) and sets voxels_set; nothing when it is current.
 void build_rank_index(ClRuntime& cl, DeviceVoxelGrid& grid);
+// Builds the rank index without waiting: the set-voxel total goes to `total` (a ulong on the device) and the
+// caller sets voxels_set (the entries it allocates for the sparse channels).
+void build_rank_index(ClRuntime& cl, DeviceVoxelGrid& grid, cl::Buffer& total);
 
 // Every present channel copied into a host VoxelGrid. voxels_set comes from the rank index when there is
 // one, else from the occupancy read back. An adopted occupancy array (adopted_occ, the one given to

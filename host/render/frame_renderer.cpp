@@ -112,13 +112,40 @@ void FrameRenderer::set_scene(const TriangleSoup& soup, const std::vector<Materi
 
 RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame& camera,
                                     const RenderOptions& options, FrameStats* stats) {
-  VOXR_CHECK(mesh_ != nullptr);
+  // The frame's small counts travel with its last wait (ClRuntime::set_counts_deferred): its stages run over
+  // capacities kept from the frames before. A frame whose counts outgrew them (a first frame of a bigger
+  // view, scene or light grid) is rendered again over the grown capacities; a count that decides the next
+  // one (the large-triangle list, then its copy records) can take a second time.
+  constexpr uint32_t kMostRerenders = 4;
   const auto start = Clock::now();
+  const uint64_t syncs_before = cl_.syncs();
   FrameStats local;
   FrameStats& st = stats ? *stats : local;
+  struct Deferral {
+    ClRuntime& cl;
+    ~Deferral() {
+      cl.set_counts_deferred(false);
+      cl.discard_counts();  // after a failure: counts still in flight
+    }
+  } deferral{cl_};
+  cl_.set_counts_deferred(true);
+  for (uint32_t rerenders = 0;; ++rerenders) {
+    VOXR_CHECK_LE(rerenders, kMostRerenders);
+    RenderedFrame frame = render_once(light, camera, options, st);
+    if (cl_.settle_counts()) {
+      st.capacity_rerenders = rerenders;
+      st.frame_ms = ms_since(start);
+      st.host_syncs = cl_.syncs() - syncs_before;
+      return frame;
+    }
+  }
+}
+
+RenderedFrame FrameRenderer::render_once(const RenderLight& light, const CameraFrame& camera,
+                                         const RenderOptions& options, FrameStats& st) {
+  VOXR_CHECK(mesh_ != nullptr);
   st = FrameStats{};
   const auto profiled_before = cl_.profiler().stats();
-  const uint64_t syncs_before = cl_.syncs();
 
   ShadowTechnique& shadows = shadow(options.shadows);
   RefractionTechnique& refract = refraction(options.refraction.method);
@@ -215,8 +242,6 @@ RenderedFrame FrameRenderer::render(const RenderLight& light, const CameraFrame&
   ctx_.dielectric = nullptr;
   ctx_.light = nullptr;
   ctx_.stats = nullptr;
-  st.frame_ms = ms_since(start);
-  st.host_syncs = cl_.syncs() - syncs_before;
   const Profiler::Split split = cl_.profiler().since(profiled_before);
   for (const auto& [name, ms] : split.stage_ms) st.stage_ms[name] = ms;
   st.stage_ms["upload"] = split.upload_ms;

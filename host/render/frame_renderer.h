@@ -98,6 +98,9 @@ class FrameRenderer {
   glm::vec3 ambient_{0.0f};  // without set_environment: the ambient colour the uploaded environment holds
   bool scene_has_dielectric_ = false;  // a triangle of the scene is a dielectric: refraction has work
 
+  // One try at the frame render() asks for, its stats (but the time and syncs of all tries) into `st`.
+  RenderedFrame render_once(const RenderLight& light, const CameraFrame& camera, const RenderOptions& options,
+                            FrameStats& st);
   void upload_environment(const EnvironmentMap& environment);
   ShadowTechnique& shadow(ShadowMethod method);
   RefractionTechnique& refraction(RefractionMethod method);

@@ -61,8 +61,9 @@ struct FrameStats {
   uint64_t device_bytes = 0;               // the shadow technique's grid or maps
   uint64_t light_triangles = 0;            // triangles voxelized or rasterized from the light
   GridSpec refraction_grid;                // voxel refraction: the scene's grid
-  uint64_t refraction_bytes = 0;  // the refraction technique's structure: the voxel grid's channels, the
-                                  // image-space buffers or the distance-map layers
+  uint64_t refraction_bytes = 0;    // the refraction technique's structure: the voxel grid's channels, the
+                                    // image-space buffers or the distance-map layers
+  uint64_t capacity_rerenders = 0;  // tries render() made again: a count outgrew the capacity kept for it
 };
 
 // What a technique says about itself after a frame: `suffix` completes the CLI's "shadows <name>" /

@@ -77,6 +77,12 @@ std::vector<ProgramSpec> VisibilityRasterizer::programs() const {
 
 void VisibilityRasterizer::bin(const DeviceMesh& mesh, const RasterTarget& target,
                                const cl::Buffer& materials, uint32_t material_count, RasterBins& bins) {
+  bin(mesh, target, materials, material_count, bins, false);
+}
+
+void VisibilityRasterizer::bin(const DeviceMesh& mesh, const RasterTarget& target,
+                               const cl::Buffer& materials, uint32_t material_count, RasterBins& bins,
+                               bool defer) {
   const uint32_t tris = mesh.triangle_count();
   bins.params_ = make_raster_params(target, tris, material_count);
   cl::Buffer& prims = bins.prims_.ensure(cl_, uint64_t(tris) * sizeof(RasterPrim), "raster primitives");
@@ -85,7 +91,7 @@ void VisibilityRasterizer::bin(const DeviceMesh& mesh, const RasterTarget& targe
   cl::Kernel setup = cl_.kernel("raster_setup.cl", "raster_setup", raster_defines());
   cl_.launch(stage("raster_setup"), setup, tris, kGroup, bins.params_, mesh.positions(), mesh.triangles(),
              materials, prims, bins.tiles_.counts(), bins.tiles_.boxes());
-  bins.tiles_.scan(cl_, record_budget_bytes_, stage("raster_scan"));
+  bins.tiles_.scan(cl_, record_budget_bytes_, stage("raster_scan"), defer);
 }
 
 void VisibilityRasterizer::for_each_batch(RasterBins& bins,
@@ -102,7 +108,7 @@ void VisibilityRasterizer::rasterize_depth(RasterBins& bins, GrowingBuffer& visi
   cl::Kernel depth = cl_.kernel("raster_depth.cl", "raster_depth", raster_defines());
   for_each_batch(bins, [&](const cl::Buffer& records, uint32_t count) {
     cl_.launch(stage("raster_depth"), depth, count, kGroup, cl_uint(width), cl_uint(height), bins.prims(),
-               records, cl_uint(count), words);
+               records, bins.tiles_.window_records(), words);
   });
 }
 
@@ -117,7 +123,7 @@ void VisibilityRasterizer::rasterize_depth_peel(RasterBins& bins, const cl::Buff
   cl::Kernel peel = cl_.kernel("raster_depth.cl", "raster_depth_peel", raster_defines());
   for_each_batch(bins, [&](const cl::Buffer& records, uint32_t count) {
     cl_.launch(stage("raster_depth_peel"), peel, count, kGroup, cl_uint(width), cl_uint(height), bins.prims(),
-               records, cl_uint(count), previous, cl_uint(epsilon_ulps), words);
+               records, bins.tiles_.window_records(), previous, cl_uint(epsilon_ulps), words);
   });
 }
 
@@ -129,7 +135,9 @@ void VisibilityRasterizer::rasterize(const DeviceMesh& mesh, const RasterTarget&
     cl_.finish();
     before = cl_.profiler().stats();
   }
-  bin(mesh, target, materials, material_count, bins_);
+  // Only the depth kernel, which reads the true record count on the device, consumes these bins: their
+  // total may travel with a later wait when the caller defers counts and wants no exact stats.
+  bin(mesh, target, materials, material_count, bins_, stats == nullptr);
   rasterize_depth(bins_, visibility);
   if (stats) {
     cl_.finish("rasterizing");

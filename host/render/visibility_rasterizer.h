@@ -100,7 +100,7 @@ class VisibilityRasterizer {
 
   // Sets up and bins the triangles of `mesh` whose material (`materials`: material_count RenderMaterial on
   // the device) has a kind in target.kind_mask; triangles with a material id >= material_count are not drawn.
-  // Waits for the record total (the only readback).
+  // Waits for the record total (the only readback; rasterize() may defer it, ClRuntime::counts_deferred).
   void bin(const DeviceMesh& mesh, const RasterTarget& target, const cl::Buffer& materials,
            uint32_t material_count, RasterBins& bins);
   // Calls `consume(records, count)` once per batch of expanded records (CopyRecord: triangle, tile): the
@@ -126,6 +126,10 @@ class VisibilityRasterizer {
                const cl::Buffer& visibility, GrowingBuffer& samples);
 
  private:
+  // bin(), with `defer` passed on to RecordBins::scan.
+  void bin(const DeviceMesh& mesh, const RasterTarget& target, const cl::Buffer& materials,
+           uint32_t material_count, RasterBins& bins, bool defer);
+
   ClRuntime& cl_;
   uint64_t record_budget_bytes_;
   std::string stage_;

@@ -6,11 +6,20 @@
 namespace voxr {
 
 void expect_no_oversized(ClRuntime& cl, const cl::Buffer& too_large, const std::string& name) {
+  auto check = [](uint64_t oversized) {
+    if (oversized)
+      throw InternalError(
+          fmt::format("{} triangles exceed {} voxels; split_oversized_triangles must run first", oversized,
+                      VOXR_MAX_TRIANGLE_EXTENT));
+    return true;
+  };
+  if (cl.counts_deferred()) {
+    cl.read_count_later(too_large, 4, "readback " + name, check);
+    return;
+  }
   cl_uint oversized = 0;
   cl.download(too_large, &oversized, 4, "readback " + name);
-  if (oversized)
-    throw InternalError(fmt::format("{} triangles exceed {} voxels; split_oversized_triangles must run first",
-                                    oversized, VOXR_MAX_TRIANGLE_EXTENT));
+  check(oversized);
 }
 
 VoxGridParams make_grid_params(const GridSpec& grid, uint32_t triangle_count, uint32_t margin,

@@ -13,7 +13,8 @@ namespace voxr {
 
 // The setup kernels count triangles longer than VOXR_MAX_TRIANGLE_EXTENT into `too_large` (4 bytes); the
 // host splits such triangles first (triangle_splitter.h), so a count above zero is a programming error:
-// reads it back and throws voxr::InternalError naming the count.
+// reads it back and throws voxr::InternalError naming the count (with deferred counts, from the caller's
+// ClRuntime::settle_counts after its next wait).
 void expect_no_oversized(ClRuntime& cl, const cl::Buffer& too_large, const std::string& name);
 
 // `margin`: conservative widening of voxel boxes (snap_margin), 0 for the centre rule; `channels`: the

@@ -85,19 +85,31 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
   cl::Buffer dummy = scratch("unused channel", 4);
 
   // Which triangles go through the copy records: the large ones the direct pass lists (hybrid), or all.
+  // With deferred counts the list's length stays on the device (`large`) and the stages after it run over
+  // a capacity: the last length with headroom, at most every triangle.
   uint64_t listed = tris;
-  cl::Buffer list = dummy;
+  cl::Buffer list = dummy, large = dummy;
   if (hybrid && tris > 0) {
     list = scratch("the large-triangle list", tris * 4);
-    cl::Buffer count = scratch("the large-triangle count", 4);
-    cl_.fill_zero(count, 4, "clear");
+    large = scratch("the large-triangle count", 4);
+    cl_.fill_zero(large, 4, "clear");
     cl::Kernel direct = cl_.kernel("vox_direct.cl", "vox_direct", with(base, "VOX_PASS", "0"));
     cl_.launch("direct", direct, tris, kGroup, make_grid_params(grid, uint32_t(tris), margin),
-               mesh.positions(), mesh.triangles(), list, count, occ, dummy, dummy, dummy);
-    cl_uint large = 0;
-    cl_.download(count, &large, 4, "readback large-triangle count");
-    listed = large;
-    stats.direct_triangles = tris - large;
+               mesh.positions(), mesh.triangles(), list, large, occ, dummy, dummy, dummy);
+    if (cl_.counts_deferred() && listed_capacity_ > 0) {
+      listed = std::min(listed_capacity_, tris);
+      cl_.read_count_later(large, 4, "readback large-triangle count", [this, listed](uint64_t count) {
+        if (count <= listed) return true;
+        listed_capacity_ = ClRuntime::with_headroom(count);
+        return false;
+      });
+    } else {
+      cl_uint count = 0;
+      cl_.download(large, &count, 4, "readback large-triangle count");
+      listed = count;
+      listed_capacity_ = ClRuntime::with_headroom(listed);
+    }
+    stats.direct_triangles = tris - listed;
   }
   const VoxGridParams params =
       make_grid_params(grid, uint32_t(listed), margin, options.rows_per_copy, channels);
@@ -110,9 +122,9 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     cl_.fill_zero(too_large, 4, "clear");
     cl::Kernel setup =
         cl_.kernel("vox_setup.cl", "vox_setup", with(base, "VOX_SETUP_LIST", hybrid ? "1" : "0"));
-    cl_.launch("setup", setup, listed, kGroup, params, mesh.positions(), mesh.triangles(), list, snapped,
-               copies_.counts(), copies_.boxes(), too_large);
-    if (!grid_method) copies_.scan(cl_, options.record_budget_bytes, "scan");
+    cl_.launch("setup", setup, listed, kGroup, params, mesh.positions(), mesh.triangles(), list, large,
+               snapped, copies_.counts(), copies_.boxes(), too_large);
+    if (!grid_method) copies_.scan(cl_, options.record_budget_bytes, "scan", true);
     expect_no_oversized(cl_, too_large, "split check");
   }
   const uint64_t copies = copies_.records();
@@ -120,8 +132,8 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
   // Rasterizes the listed triangles with one pass of the kernels: batches of expanded copy records (a
   // single batch is expanded once and reused by the second pass), or for the Grid baseline one launch per
   // slab.
-  auto raster_listed = [&](const char* name, int pass, const cl::Buffer& ranked, const cl::Buffer& acc,
-                           const cl::Buffer& material) {
+  auto raster_listed = [&](const char* name, int pass, const VoxGridParams& params, const cl::Buffer& ranked,
+                           const cl::Buffer& acc, const cl::Buffer& material) {
     const Defines p = with(base, "VOX_PASS", std::to_string(pass));
     if (listed == 0) return;
     if (grid_method) {
@@ -133,17 +145,32 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     }
     cl::Kernel raster = cl_.kernel("vox_raster.cl", "vox_raster", p);
     copies_.for_each_batch(cl_, "expand", [&](const cl::Buffer& records, uint32_t count) {
-      cl_.launch(name, raster, count, kGroup, params, snapped, records, cl_uint(count), occ, ranked, acc,
-                 material);
+      cl_.launch(name, raster, count, kGroup, params, snapped, records, copies_.window_records(), occ, ranked,
+                 acc, material);
     });
   };
-  raster_listed("raster", 0, dummy, dummy, dummy);
+  raster_listed("raster", 0, params, dummy, dummy, dummy);
 
   if (options.channels.sparse()) {
     progress("attributes");
-    build_rank_index(cl_, out);
-    const uint64_t set = out.voxels_set;
+    // The sparse channels' entries: the set voxels, or with deferred counts a capacity (the last total with
+    // headroom; the kernels drop ranks past it and stop at the true total on the device).
+    cl::Buffer set_total = scratch("the set-voxel total", 8);
+    build_rank_index(cl_, out, set_total);
+    uint64_t set = 0;
+    if (cl_.counts_deferred() && set_capacity_ > 0) {
+      set = set_capacity_;
+      cl_.read_count_later(set_total, 8, "readback rank total", [this](uint64_t total) {
+        if (total <= set_capacity_) return true;
+        set_capacity_ = std::min<uint64_t>(ClRuntime::with_headroom(total), 0xffffffffull);
+        return false;
+      });
+    } else {
+      cl_.download(set_total, &set, 8, "readback rank total");
+      set_capacity_ = std::min<uint64_t>(ClRuntime::with_headroom(set), 0xffffffffull);
+    }
     if (set > 0xffffffffull) fail("{} set voxels exceed the 2^32 limit of the attribute channels", set);
+    out.voxels_set = set;
     cl::Buffer acc = dummy;
     if (packed) {
       acc = scratch("the count/normal accumulators", set * 16);
@@ -157,11 +184,14 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     const cl::Buffer& ranked = out.ranked.buffer;
     if (hybrid && tris > 0) {
       cl::Kernel direct = cl_.kernel("vox_direct.cl", "vox_direct", with(base, "VOX_PASS", "1"));
-      cl_.launch("attributes", direct, tris, kGroup,
-                 make_grid_params(grid, uint32_t(tris), margin, 1, channels), mesh.positions(),
-                 mesh.triangles(), list, dummy, occ, ranked, acc, material);
+      VoxGridParams direct_params = make_grid_params(grid, uint32_t(tris), margin, 1, channels);
+      direct_params.dims[3] = uint32_t(set);
+      cl_.launch("attributes", direct, tris, kGroup, direct_params, mesh.positions(), mesh.triangles(), list,
+                 dummy, occ, ranked, acc, material);
     }
-    raster_listed("attributes", 1, ranked, acc, material);
+    VoxGridParams attribute_params = params;
+    attribute_params.dims[3] = uint32_t(set);
+    raster_listed("attributes", 1, attribute_params, ranked, acc, material);
 
     if (packed) {
       const bool normals = options.channels.has(Channel::kNormal);
@@ -170,7 +200,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
       cl::Buffer nsum = normals ? out.normal_sum.ensure(cl_, set * 12, "the normal sums") : dummy;
       cl::Buffer normal = normals ? out.normal.ensure(cl_, set * 12, "the normal channel") : dummy;
       cl::Kernel finalize = cl_.kernel("vox_finalize.cl", "vox_finalize", base);
-      cl_.launch("finalize", finalize, set, kGroup, acc, count, nsum, normal, cl_uint(set),
+      cl_.launch("finalize", finalize, set, kGroup, acc, count, nsum, normal, cl_uint(set), set_total,
                  cl_uint(channels));
     }
   }

@@ -94,8 +94,9 @@ void Voxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Voxelize
         options.mode == RasterMode::kConservative && method_info(options.method).modes;
     solid().run(mesh, grid, *options.solid, conservative_surface, out, local);
   }
-  // Then always: the mesh may be a caller's temporary whose host arrays the kernels read in place.
-  cl_.finish("voxelizing");
+  // Then, unless counts are deferred and no times are asked for: the mesh may be a caller's temporary whose
+  // host arrays the kernels read in place. A frame (deferred counts) keeps its meshes past its last wait.
+  if (stats || !cl_.counts_deferred()) cl_.finish("voxelizing");
   local.voxels_set = out.voxels_set;
   local.inside_voxels = out.inside_voxels;
   local.triangles_split = mesh.triangles_split();

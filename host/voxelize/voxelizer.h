@@ -92,6 +92,8 @@ struct VoxelizeStats {
   uint64_t copies = 0;            // records: (triangle, slab, row block) copies or slicemap tiles
   uint64_t work_items = 0;        // raster work items: direct triangles + copies, or triangles x slabs (grid)
   uint64_t batches = 0;
+  // (With deferred counts, direct_triangles, copies, work_items, batches and voxels_set are those of the
+  // capacities the launches ran over: the true counts are checked after the caller's next wait.)
   uint64_t voxels_set = 0;  // known when the run builds the rank index or reads back; 0 for a device-only
                             // occupancy run (build_rank_index or read_back gives it)
   uint32_t margin = 0;      // conservative: widening of voxel boxes, 1/VOXR_SUBVOXEL voxel units
@@ -137,7 +139,8 @@ class Voxelizer {
   // Voxelizes an uploaded mesh into `out`, whose buffers are reused when large enough: the surface, then
   // the interior when options.solid is set. Nothing is read back. `stats` (optional) receives counts and
   // profiled times of this run (upload_ms stays 0: the mesh was uploaded before); without it the run does
-  // not wait for the queue before it starts.
+  // not wait for the queue before it starts, and while counts are deferred (ClRuntime::counts_deferred, a
+  // frame) it does not wait at its end either: the mesh must then stay alive until the caller's next wait.
   void run(const DeviceMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options, DeviceVoxelGrid& out,
            VoxelizeStats* stats = nullptr);
 

@@ -39,6 +39,8 @@ typedef struct GridView {
   uint dims_x, dims_y, dims_z;
   uint channels;
   uint has_rank_index;
+  uint voxels_set; /* entries of the sparse channels: a rank past them reads as absent (a frame whose
+                      set-voxel count outgrew the capacity the host allocated is rendered again) */
 } GridView;
 
 inline GridView gv_make(const VoxGridView* p, __global const uint* occ, __global const ulong* ranked,
@@ -56,6 +58,7 @@ inline GridView gv_make(const VoxGridView* p, __global const uint* occ, __global
   g.dims_z = p->dims[2];
   g.channels = p->channels;
   g.has_rank_index = p->has_rank_index;
+  g.voxels_set = p->voxels_set;
   return g;
 }
 
@@ -93,15 +96,15 @@ inline uint gv_rank(const GridView* g, ulong linear) {
 }
 
 inline uint gv_count(const GridView* g, uint rank) {
-  return gv_has(g, VOX_CH_COUNT) ? g->count[rank] : 0u;
+  return gv_has(g, VOX_CH_COUNT) && rank < g->voxels_set ? g->count[rank] : 0u;
 }
 
 inline float3 gv_normal(const GridView* g, uint rank) {
-  return gv_has(g, VOX_CH_NORMAL) ? vload3(rank, g->normal) : (float3)(0.0f);
+  return gv_has(g, VOX_CH_NORMAL) && rank < g->voxels_set ? vload3(rank, g->normal) : (float3)(0.0f);
 }
 
 inline uint gv_material(const GridView* g, uint rank) {
-  return gv_has(g, VOX_CH_MATERIAL) ? g->material[rank] : 0u;
+  return gv_has(g, VOX_CH_MATERIAL) && rank < g->voxels_set ? g->material[rank] : 0u;
 }
 
 /* World point -> grid units, with the grid's affine (VoxGridView.world_to_grid). */

@@ -35,7 +35,7 @@ typedef uint32_t uint;
 /* Grid parameters passed by value to the voxelization kernels. */
 typedef struct VoxGridParams {
   float world_to_grid[12]; /* rows of a 3x4 affine: world -> grid units */
-  uint dims[4];            /* x, y, z, unused */
+  uint dims[4];            /* x, y, z; [3]: the attribute pass's entries (writes at ranks past it dropped) */
   uint rows_per_copy;      /* rows of one slab that a single raster work item handles */
   uint triangle_count;
   uint margin;   /* conservative mode: voxel boxes are widened by this many 1/VOXR_SUBVOXEL units on every

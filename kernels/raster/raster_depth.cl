@@ -7,7 +7,8 @@
  *     previous layer's visibility buffer has a triangle and the fragment lies farther than its depth by more
  *     than epsilon_ulps float steps (depths are non-negative, so their bits order as uints; the same
  *     triangle gives the same depth bits at a pixel, so it is never kept twice). shape: as raster_depth.
- * in:  prims (raster_setup.cl), records (util/expand_copies.cl), previous (peel: the last layer's words)
+ * in:  prims (raster_setup.cl), records and how many (util/expand_copies.cl; the launch may run past them),
+ *      previous (peel: the last layer's words)
  * out: visibility[y * width + x] */
 #pragma OPENCL EXTENSION cl_khr_int64_extended_atomics : enable
 
@@ -25,9 +26,9 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_clear(
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_depth(
     uint width, uint height, __global const RasterPrim* prims, __global const CopyRecord* records,
-    uint record_count, __global ulong* visibility) {
+    __global const uint* record_count, __global ulong* visibility) {
   const uint gid = get_global_id(0);
-  if (gid >= record_count) return;
+  if (gid >= *record_count) return;
   const CopyRecord rec = records[gid];
   __global const RasterPrim* prim = prims + rec.triangle;
   ulong mask = raster_tile_mask(prim, rec.cell, width, height);
@@ -47,9 +48,10 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_depth(
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_depth_peel(
     uint width, uint height, __global const RasterPrim* prims, __global const CopyRecord* records,
-    uint record_count, __global const ulong* previous, uint epsilon_ulps, __global ulong* visibility) {
+    __global const uint* record_count, __global const ulong* previous, uint epsilon_ulps,
+    __global ulong* visibility) {
   const uint gid = get_global_id(0);
-  if (gid >= record_count) return;
+  if (gid >= *record_count) return;
   const CopyRecord rec = records[gid];
   __global const RasterPrim* prim = prims + rec.triangle;
   ulong mask = raster_tile_mask(prim, rec.cell, width, height);

@@ -6,8 +6,11 @@
  * with thousands of copies is expanded by as many work items), its copy q = r - offsets[t] the cell
  * (first column + q % width, first row + q / width). Only the window is written, so the host can expand and
  * consume the records in batches that fit its memory budget (host/cl/record_bins.h).
- * in:  offsets[t] (exclusive scan of the copy counts, ulong), boxes[t]
- * out: records[i], i < window_count
+ * The window may run past the last record (a capacity the host chose without waiting for the total): it
+ * ends at `total` (the scan's grand total, on the device), and work item 0 writes how many records it holds
+ * to window_records, which the consumer kernel reads as its record count.
+ * in:  offsets[t] (exclusive scan of the copy counts, ulong), boxes[t], total
+ * out: records[i], i < min(window_count, total - window_begin); window_records
  * shape: one work item per record of the window. */
 #include "voxr_layout.h"
 
@@ -28,9 +31,13 @@ inline uint expand_find(__global const ulong* offsets, uint lo, uint hi, ulong r
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void expand_copies(
-    uint triangle_count, __global const ulong* offsets, __global const CopyBox* boxes, ulong window_begin,
-    uint window_count, __global CopyRecord* records) {
-  if (triangle_count == 0) return;
+    uint triangle_count, __global const ulong* offsets, __global const CopyBox* boxes,
+    __global const ulong* total, ulong window_begin, uint window_count, __global CopyRecord* records,
+    __global uint* window_records) {
+  const ulong left = *total > window_begin ? *total - window_begin : 0;
+  if (left < window_count) window_count = (uint)left;
+  if (get_global_id(0) == 0) *window_records = window_count;
+  if (triangle_count == 0 || window_count == 0) return;
   /* The group's records lie between the triangles of its first and its last record: one search over all
    * triangles per group, then each work item searches only that range (a few steps where triangles have a
    * few copies each). */

@@ -145,7 +145,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
   }
 
   VoxWriter w;
-  vox_writer_init(&w, tri.w, grid.channels, occ, ranked, acc, material);
+  vox_writer_init(&w, tri.w, &grid, occ, ranked, acc, material);
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
 #if VOX_PASS == 1
   if (grid.channels & VOX_CH_NORMAL)

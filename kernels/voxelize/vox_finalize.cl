@@ -2,7 +2,8 @@
  * acc[2r] = sum(n.x) + count * 2^32, acc[2r+1] = sum(n.y) + sum(n.z) * 2^32 (each sum below 2^31 in
  * magnitude), into the count, the fixed-point normal sum and the unit normal (zero where the sum cancels,
  * e.g. a voxel touched by both sides of a thin sheet). `channels` (ChannelSet bits) selects the outputs.
- * shape: one work item per set voxel. */
+ * entries: the length of the accumulators and outputs the host allocated; voxel_count: the set voxels (on
+ * the device: either may be the smaller). shape: one work item per entry. */
 #ifndef WG_SIZE
 #define WG_SIZE 64
 #endif
@@ -12,10 +13,10 @@
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_finalize(
-    __global const long* acc, __global uint* count, __global int* nsum, __global float* normal, uint voxel_count,
-    uint channels) {
+    __global const long* acc, __global uint* count, __global int* nsum, __global float* normal,
+    uint entries, __global const ulong* voxel_count, uint channels) {
   const uint r = get_global_id(0);
-  if (r >= voxel_count) return;
+  if (r >= entries || r >= *voxel_count) return;
   const long p0 = acc[2 * (ulong)r];
   const int nx = as_int((uint)p0);
   if (channels & VOX_CH_COUNT) count[r] = (uint)((p0 - nx) / (1L << 32));

@@ -22,7 +22,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_grid(
   VoxRule rule;
   vox_rule_init(&rule, &t, &grid);
   VoxWriter w;
-  vox_writer_init(&w, material_id, grid.channels, occ, ranked, acc, material);
+  vox_writer_init(&w, material_id, &grid, occ, ranked, acc, material);
 #if VOX_PASS == 1
   if (grid.channels & VOX_CH_NORMAL) vox_fixed_normal(vox_tri_normal(&t), &w.normal);
 #endif

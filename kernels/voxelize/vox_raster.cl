@@ -1,7 +1,8 @@
 /* vox_raster.cl — the scanline stage of the slice voxelizer: each work item takes one copy record
  * (triangle; cell: block of rows_per_copy rows, slab) written by util/expand_copies.cl and rasterizes it
  * (vox_scanline.h: exact rules, passes, channels).
- * in:  snapped triangles (vox_setup.cl), copy records; pass 1 also the ranked occupancy words
+ * in:  snapped triangles (vox_setup.cl), copy records and how many (the launch may run past them); pass 1
+ *      also the ranked occupancy words
  * out: occupancy bits (pass 0) or the attribute accumulators (pass 1)
  * shape: one work item per copy record. */
 #include "vox_scanline.h"
@@ -11,10 +12,10 @@
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
-    VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const CopyRecord* copies, uint copy_count,
+    VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const CopyRecord* copies, __global const uint* copy_count,
     __global uint* occ, __global const ulong* ranked, __global long* acc, __global uint* material) {
   const uint gid = get_global_id(0);
-  if (gid >= copy_count) return;
+  if (gid >= *copy_count) return;
   const CopyRecord rec = copies[gid];
   VoxTri t;
   const uint material_id = vox_fetch_triangle(&t, snapped, rec.triangle);
@@ -24,7 +25,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
   VoxRule rule;
   vox_rule_init(&rule, &t, &grid);
   VoxWriter w;
-  vox_writer_init(&w, material_id, grid.channels, occ, ranked, acc, material);
+  vox_writer_init(&w, material_id, &grid, occ, ranked, acc, material);
 #if VOX_PASS == 1
   if (grid.channels & VOX_CH_NORMAL) vox_fixed_normal(vox_tri_normal(&t), &w.normal);
 #endif

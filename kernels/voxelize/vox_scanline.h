@@ -102,6 +102,7 @@ typedef struct VoxWriter {
   int3 normal; /* pass 1: the triangle's fixed-point unit normal (vox_fixed_normal) */
   uint material_id;
   uint channels; /* pass 1: the channels to accumulate */
+  uint entries;  /* pass 1: ranks below it have accumulator and material entries (VoxGridParams.dims[3]) */
 } VoxWriter;
 
 inline void vox_flush(VoxWriter* w) {
@@ -128,6 +129,7 @@ inline void vox_emit(VoxWriter* w, ulong linear) {
     w->word_ranked = w->ranked[word];
   }
   const ulong rank = VOXR_RANKED_RANK(w->word_ranked) + popcount(VOXR_RANKED_BITS(w->word_ranked) & (bit - 1u));
+  if (rank >= w->entries) return;
   if (w->channels & (VOX_CH_COUNT | VOX_CH_NORMAL)) atom_add(w->acc + 2 * rank, (long)w->normal.x + (1L << 32));
   /* A multiplication, not a shift: shifting a negative value left is undefined in OpenCL C. */
   if (w->channels & VOX_CH_NORMAL)
@@ -218,7 +220,7 @@ inline void vox_rule_init(VoxRule* r, const VoxTri* t, const VoxGridParams* grid
 }
 
 /* A writer for one triangle (pass 1 with normals: set w->normal with vox_fixed_normal afterwards). */
-inline void vox_writer_init(VoxWriter* w, uint material_id, uint channels, __global uint* occ,
+inline void vox_writer_init(VoxWriter* w, uint material_id, const VoxGridParams* grid, __global uint* occ,
                             __global const ulong* ranked, __global long* acc, __global uint* material) {
   w->occ = occ;
   w->ranked = ranked;
@@ -227,7 +229,8 @@ inline void vox_writer_init(VoxWriter* w, uint material_id, uint channels, __glo
   w->word = ~0UL;
   w->mask = 0;
   w->material_id = material_id;
-  w->channels = channels;
+  w->channels = grid->channels;
+  w->entries = grid->dims[3];
   w->normal = (int3)(0);
 }
 

@@ -1,7 +1,8 @@
 /* vox_setup.cl — per triangle: snap to the grid, find the slabs and rows it may touch, and count its
  * copies (one per slab and block of rows_per_copy rows).
  * in:  positions (float4), triangles (uint4: indices, material); with VOX_SETUP_LIST, entry e is triangle
- *      list[e] (the large triangles vox_direct.cl leaves to this path), else triangle e
+ *      list[e] (the large triangles vox_direct.cl leaves to this path) for e < *listed (the launch may run
+ *      past the list: later entries count no copies), else triangle e
  * out: snapped[e] (what the later stages read instead of the mesh), copy_counts[e], copy_boxes[e] (cells:
  *      block of rows across, slab down; util/expand_copies.cl);
  *      too_large counts triangles the host should have split (must stay 0).
@@ -18,10 +19,14 @@
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_setup(
     VoxGridParams grid, __global const float4* positions, __global const uint4* triangles,
-    __global const uint* list, __global VoxSnappedTriangle* snapped, __global uint* copy_counts,
-    __global CopyBox* copy_boxes, __global uint* too_large) {
+    __global const uint* list, __global const uint* listed, __global VoxSnappedTriangle* snapped,
+    __global uint* copy_counts, __global CopyBox* copy_boxes, __global uint* too_large) {
   const uint e = get_global_id(0);
   if (e >= grid.triangle_count) return;
+  if (VOX_SETUP_LIST && e >= *listed) {
+    copy_counts[e] = 0;
+    return;
+  }
   VoxTri tri;
   vox_prepare_triangle(&tri, &grid, positions, triangles[VOX_SETUP_LIST ? list[e] : e], snapped, e);
   uint count = 0;
