@@ -34,24 +34,25 @@ void RecordBins::prepare(ClRuntime& cl, uint64_t triangles) {
   offsets_.ensure(cl, triangles * sizeof(cl_ulong), "copy offsets");
 }
 
-void RecordBins::scan(ClRuntime& cl, uint64_t budget_bytes, const std::string& name, bool defer) {
+void RecordBins::scan(ClRuntime& cl, uint64_t budget_bytes, const std::string& name, uint64_t* capacity) {
   cl::Buffer& total = total_.ensure(cl, sizeof(cl_ulong), "copy total");
   exclusive_scan(cl, ScanKind::kUintToUlong, counts_.buffer, offsets_.buffer, triangles_, total, name);
   const uint64_t most = std::min(std::max<uint64_t>(1, budget_bytes / sizeof(CopyRecord)), kMaxBatch);
-  if (defer && cl.counts_deferred() && capacity_ > 0 && capacity_ <= most) {
-    records_ = batch_ = capacity_;
-    cl.read_count_later(total, sizeof(cl_ulong), "readback " + name + " total", [this](uint64_t records) {
-      if (records <= capacity_) return true;
-      capacity_ = ClRuntime::with_headroom(records);
-      return false;
-    });
+  if (capacity && cl.counts_deferred() && *capacity > 0 && *capacity <= most) {
+    records_ = batch_ = *capacity;
+    cl.read_count_later(total, sizeof(cl_ulong), "readback " + name + " total",
+                        [capacity, used = *capacity](uint64_t records) {
+                          if (records <= used) return true;
+                          *capacity = std::max(*capacity, ClRuntime::with_headroom(records));
+                          return false;
+                        });
     return;
   }
   cl_ulong records = 0;
   cl.download(total, &records, sizeof(records), "readback " + name + " total");
   records_ = records;
   batch_ = std::min(records_, most);
-  capacity_ = ClRuntime::with_headroom(records_);
+  if (capacity) *capacity = ClRuntime::with_headroom(records_);
 }
 
 uint64_t RecordBins::device_bytes() const {

@@ -34,11 +34,12 @@ class RecordBins {
 
   // Scans the counts the setup kernel wrote, under the profiler name `name`, and waits for the record total
   // (one readback). Batches then hold at most `budget_bytes` of records (at least 1, at most kMaxBatch).
-  // With `defer` (and cl.counts_deferred()), once a capacity is known from an earlier scan and fits one
-  // batch, it does not wait: records() is the capacity, the one batch runs over it (the expand kernel
-  // stops at the true total on the device) and the total is checked against the capacity with the caller's
-  // next wait (ClRuntime::read_count_later; an exceeded capacity grows).
-  void scan(ClRuntime& cl, uint64_t budget_bytes, const std::string& name, bool defer = false);
+  // With a `capacity` (the caller's, one per use of the binning: the last total with headroom, 0 when
+  // unknown) and cl.counts_deferred(), once the capacity is known and fits one batch, it does not wait:
+  // records() is the capacity, the one batch runs over it (the expand kernel stops at the true total on
+  // the device) and the total is checked against it with the caller's next wait (ClRuntime::read_count_later;
+  // an exceeded capacity grows). A scan that waits sets *capacity from the total.
+  void scan(ClRuntime& cl, uint64_t budget_bytes, const std::string& name, uint64_t* capacity = nullptr);
 
   uint64_t triangles() const { return triangles_; }
   uint64_t records() const { return records_; }      // all batches together (deferred: the capacity)
@@ -58,7 +59,6 @@ class RecordBins {
 
  private:
   uint64_t triangles_ = 0, records_ = 0, batch_ = 0;
-  uint64_t capacity_ = 0;  // records a deferred scan runs over: the last total with headroom (0: unknown)
   bool expanded_ = false;  // the single batch's records are in place
   GrowingBuffer counts_, boxes_, offsets_, records_buffer_, total_, window_records_;
 };

@@ -51,6 +51,14 @@ class DeviceVoxelGrid {
                                 // total unused)
   uint64_t inside_voxels = 0;   // set inside bits (when channels has inside)
   bool has_rank_index = false;  // whether `ranked` describes the current occupancy
+  // What the last voxelization into this grid counted, with headroom: the capacities the next one runs over
+  // when a frame defers its counts (ClRuntime::counts_deferred). Kept per grid, not per voxelizer: one
+  // voxelizer fills several grids a frame (the light's, the refraction grid), each with its own counts.
+  struct DeferredCapacities {
+    uint64_t listed = 0;   // hybrid: the large-triangle list
+    uint64_t records = 0;  // the copy records (RecordBins::scan)
+    uint64_t set = 0;      // the set voxels (the sparse channels' entries)
+  } capacities;
 
   GrowingBuffer occ, inside, ranked;
   GrowingBuffer count, normal_sum, normal, material;

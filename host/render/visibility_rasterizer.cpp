@@ -91,7 +91,7 @@ void VisibilityRasterizer::bin(const DeviceMesh& mesh, const RasterTarget& targe
   cl::Kernel setup = cl_.kernel("raster_setup.cl", "raster_setup", raster_defines());
   cl_.launch(stage("raster_setup"), setup, tris, kGroup, bins.params_, mesh.positions(), mesh.triangles(),
              materials, prims, bins.tiles_.counts(), bins.tiles_.boxes());
-  bins.tiles_.scan(cl_, record_budget_bytes_, stage("raster_scan"), defer);
+  bins.tiles_.scan(cl_, record_budget_bytes_, stage("raster_scan"), defer ? &bins.record_capacity_ : nullptr);
 }
 
 void VisibilityRasterizer::for_each_batch(RasterBins& bins,

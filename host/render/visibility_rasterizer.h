@@ -84,6 +84,7 @@ class RasterBins {
   RasterParams params_{};
   GrowingBuffer prims_;
   RecordBins tiles_;
+  uint64_t record_capacity_ = 0;  // a deferred binning's records (RecordBins::scan)
 };
 
 class VisibilityRasterizer {

@@ -96,18 +96,19 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     cl::Kernel direct = cl_.kernel("vox_direct.cl", "vox_direct", with(base, "VOX_PASS", "0"));
     cl_.launch("direct", direct, tris, kGroup, make_grid_params(grid, uint32_t(tris), margin),
                mesh.positions(), mesh.triangles(), list, large, occ, dummy, dummy, dummy);
-    if (cl_.counts_deferred() && listed_capacity_ > 0) {
-      listed = std::min(listed_capacity_, tris);
-      cl_.read_count_later(large, 4, "readback large-triangle count", [this, listed](uint64_t count) {
+    uint64_t& capacity = out.capacities.listed;
+    if (cl_.counts_deferred() && capacity > 0) {
+      listed = std::min(capacity, tris);
+      cl_.read_count_later(large, 4, "readback large-triangle count", [&capacity, listed](uint64_t count) {
         if (count <= listed) return true;
-        listed_capacity_ = ClRuntime::with_headroom(count);
+        capacity = std::max(capacity, ClRuntime::with_headroom(count));
         return false;
       });
     } else {
       cl_uint count = 0;
       cl_.download(large, &count, 4, "readback large-triangle count");
       listed = count;
-      listed_capacity_ = ClRuntime::with_headroom(listed);
+      capacity = ClRuntime::with_headroom(listed);
     }
     stats.direct_triangles = tris - listed;
   }
@@ -124,7 +125,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
         cl_.kernel("vox_setup.cl", "vox_setup", with(base, "VOX_SETUP_LIST", hybrid ? "1" : "0"));
     cl_.launch("setup", setup, listed, kGroup, params, mesh.positions(), mesh.triangles(), list, large,
                snapped, copies_.counts(), copies_.boxes(), too_large);
-    if (!grid_method) copies_.scan(cl_, options.record_budget_bytes, "scan", true);
+    if (!grid_method) copies_.scan(cl_, options.record_budget_bytes, "scan", &out.capacities.records);
     expect_no_oversized(cl_, too_large, "split check");
   }
   const uint64_t copies = copies_.records();
@@ -158,16 +159,17 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     cl::Buffer set_total = scratch("the set-voxel total", 8);
     build_rank_index(cl_, out, set_total);
     uint64_t set = 0;
-    if (cl_.counts_deferred() && set_capacity_ > 0) {
-      set = set_capacity_;
-      cl_.read_count_later(set_total, 8, "readback rank total", [this](uint64_t total) {
-        if (total <= set_capacity_) return true;
-        set_capacity_ = std::min<uint64_t>(ClRuntime::with_headroom(total), 0xffffffffull);
+    uint64_t& capacity = out.capacities.set;
+    if (cl_.counts_deferred() && capacity > 0) {
+      set = capacity;
+      cl_.read_count_later(set_total, 8, "readback rank total", [&capacity, set](uint64_t total) {
+        if (total <= set) return true;
+        capacity = std::max(capacity, std::min<uint64_t>(ClRuntime::with_headroom(total), 0xffffffffull));
         return false;
       });
     } else {
       cl_.download(set_total, &set, 8, "readback rank total");
-      set_capacity_ = std::min<uint64_t>(ClRuntime::with_headroom(set), 0xffffffffull);
+      capacity = std::min<uint64_t>(ClRuntime::with_headroom(set), 0xffffffffull);
     }
     if (set > 0xffffffffull) fail("{} set voxels exceed the 2^32 limit of the attribute channels", set);
     out.voxels_set = set;

@@ -29,11 +29,8 @@ class SliceVoxelizer final : public SurfaceVoxelizer {
  private:
   ClRuntime& cl_;
   VoxelizeMethod method_;
-  ScratchBuffers scratch_;        // device buffers kept between runs
-  RecordBins copies_;             // the copy records of the slice path
-  uint64_t set_capacity_ = 0;     // the sparse channels' entries when counts are deferred (0: unknown)
-  uint64_t listed_capacity_ = 0;  // hybrid: entries the stages after the direct pass run over when counts are
-                                  // deferred (the last list length with headroom; 0: unknown)
+  ScratchBuffers scratch_;  // device buffers kept between runs
+  RecordBins copies_;       // the copy records of the slice path
 };
 
 }  // namespace voxr
