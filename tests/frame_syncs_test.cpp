@@ -74,7 +74,8 @@ FrameStats warm_frame(RefractionMethod refraction) {
 // records, the split check and the set-voxel total; the camera rasterizer's records) stay on the device:
 // their launches run over capacities kept from the frame before, and the counts travel with the frame's one
 // last wait, which also brings the image back. That wait is the only one left in a warm frame, with or
-// without refraction (a new light mesh's upload adds 2, a first frame reads its counts at once).
+// without refraction (a frame that fits a new light frame adds DeviceLightFrame's two readbacks, a first
+// frame reads its counts at once).
 TEST(HostSyncs, DefaultFrameStaysWithinItsBudget) {
   EXPECT_LE(warm_frame(RefractionMethod::kVoxelMulti).host_syncs, 3u);
   EXPECT_LE(warm_frame(RefractionMethod::kNone).host_syncs, 3u);

@@ -87,10 +87,11 @@ cl::Buffer& DeviceVoxelGrid::occupancy_for_writing(ClRuntime& cl) {
 
 void build_rank_index(ClRuntime& cl, DeviceVoxelGrid& grid) {
   if (grid.has_rank_index) return;
-  const uint64_t words = grid.words();
-  cl::Buffer& ranked = grid.ranked.ensure(cl, words * 8, "the rank index");
-  grid.voxels_set = exclusive_scan(cl, ScanKind::kRankedWords, grid.occ.buffer, ranked, words, "rank");
-  grid.has_rank_index = true;
+  cl::Buffer total = cl.buffer(sizeof(cl_ulong), "the set-voxel total");
+  build_rank_index(cl, grid, total);
+  cl_ulong set = 0;
+  cl.download(total, &set, sizeof(set), "readback rank total");
+  grid.voxels_set = set;
 }
 
 void build_rank_index(ClRuntime& cl, DeviceVoxelGrid& grid, cl::Buffer& total) {

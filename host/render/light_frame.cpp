@@ -510,8 +510,9 @@ const DeviceMesh& DeviceLightFrame::light_mesh(const DeviceMesh& casters) {
   cl::Buffer& out_triangles = triangles_.ensure(cl_, 16, "light mesh triangles");
   cl_.launch("light_mesh", pieces, n, kLightGroup, args, f.params, casters.positions(), casters.triangles(),
              projected, n, counts, offsets, cl_ulong(0), out_positions, out_triangles, reduce);
-  std::array<uint32_t, kSlots> r{};
-  cl_.download_later(reduce, r.data(), kSlots * 4, "readback light mesh counts");
+  reduce_host_.assign(kSlots, 0);
+  const std::vector<uint32_t>& r = reduce_host_;
+  cl_.download_later(reduce, reduce_host_.data(), kSlots * 4, "readback light mesh counts");
   uint64_t total = 0;
   if (n > 0)
     total = exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, n, "light_mesh");

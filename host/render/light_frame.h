@@ -3,8 +3,9 @@
 // ray and its slabs are depth slices.
 //   directional light: an orthographic grid of cubic voxels whose z axis is the light's direction;
 //   point light: a frustum grid in the light's projective space (u = x/z, v = y/z, depth uniform in 1/z),
-//   where triangles stay triangles: the mesh is mapped there (project_to_light_grid) and voxelized on an
-//   identity grid.
+//   where triangles stay triangles: the mesh is mapped there and voxelized on an identity grid.
+// Frames fit, project, clip and split on the device (DeviceLightFrame); fit_light_frame and
+// project_to_light_grid are the host definitions its tests compare with.
 // The grid is fitted to what can shadow what the camera sees: its columns cover the receivers (the scene's
 // bounds clipped to the camera's view), its depth runs from the nearest caster in those columns to the
 // farthest receiver. No more than the scene needs.
@@ -105,6 +106,9 @@ class DeviceLightFrame {
   ClRuntime& cl_;
   LightFrame frame_;
   GrowingBuffer reduce_, boxes_, nears_, projected_, counts_, offsets_, positions_, triangles_;
+  // light_mesh's reductions read back with the scan's wait: a member, so that a throw before that wait
+  // (an allocation, a launch) never leaves a read into a stack that is gone.
+  std::vector<uint32_t> reduce_host_;
   std::unique_ptr<DeviceMesh> mesh_;
 };
 

@@ -164,6 +164,8 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
       set = capacity;
       cl_.read_count_later(set_total, 8, "readback rank total", [&capacity, set](uint64_t total) {
         if (total <= set) return true;
+        if (total > 0xffffffffull)
+          fail("{} set voxels exceed the 2^32 limit of the attribute channels", total);
         capacity = std::max(capacity, std::min<uint64_t>(ClRuntime::with_headroom(total), 0xffffffffull));
         return false;
       });

@@ -15,8 +15,7 @@
  *                      writes the pieces (non-indexed: 3 float4 corners each) at the scanned offsets.
  * Reduction slots (uint, LIGHT_SLOTS; floats as order-preserving keys): LIGHT_CAST + 0..3 the casters'
  * footprint lo.x, lo.y, hi.x, hi.y; LIGHT_NEAR their nearest depth; LIGHT_BOUNDS + 0..5 the light mesh's
- * bounds lo xyz, hi xyz; LIGHT_SPLIT triangles split; LIGHT_OVERFLOW pieces past LIGHT_SPLIT_DEPTH or
- * the output capacity. */
+ * bounds lo xyz, hi xyz; LIGHT_SPLIT triangles split; LIGHT_OVERFLOW pieces past LIGHT_SPLIT_DEPTH. */
 #pragma OPENCL FP_CONTRACT OFF
 
 #include "voxr_layout.h"
@@ -276,12 +275,9 @@ inline void lf_box(const LightPieces* p, const float3* w, float3* lo, float3* hi
 }
 
 inline void lf_emit(const LightPieces* p, const float3* w, uint material, ulong at, ulong capacity,
-                    __global float4* out_positions, __global uint4* out_triangles, __global uint* reduce) {
-  if (!p->write) return;
-  if (at >= capacity) {
-    atomic_inc(&reduce[LIGHT_OVERFLOW]);
-    return;
-  }
+                    __global float4* out_positions, __global uint4* out_triangles) {
+  /* The capacity is pass 0's scanned total, so `at` stays below it; the check only bounds the write. */
+  if (!p->write || at >= capacity) return;
   for (int c = 0; c < 3; ++c) out_positions[3 * at + c] = (float4)(w[c], 1.0f);
   const uint v = (uint)(3 * at);
   out_triangles[at] = (uint4)(v, v + 1, v + 2, material);
@@ -326,7 +322,7 @@ inline uint lf_split(const LightPieces* p, const float3* tri, uint material, ulo
   lf_box(p, tri, &lo, &hi);
   const float3 e = hi - lo;
   if (lf_max(lf_max(e.x, e.y), e.z) <= LIGHT_SPLIT_EXTENT) { /* needs_work is false */
-    lf_emit(p, tri, material, at, capacity, out_positions, out_triangles, reduce);
+    lf_emit(p, tri, material, at, capacity, out_positions, out_triangles);
     return 1;
   }
   if (!p->write) atomic_inc(&reduce[LIGHT_SPLIT]);
@@ -341,7 +337,7 @@ inline uint lf_split(const LightPieces* p, const float3* tri, uint material, ulo
           hi.z < -1.0f || lo.z > p->dims.z + 1.0f)) { /* else it misses the grid */
       const float3 x = hi - lo;
       if (lf_max(lf_max(x.x, x.y), x.z) <= LIGHT_SPLIT_EXTENT) {
-        lf_emit(p, w, material, at + pieces, capacity, out_positions, out_triangles, reduce);
+        lf_emit(p, w, material, at + pieces, capacity, out_positions, out_triangles);
         ++pieces;
       } else if (depth == LIGHT_SPLIT_DEPTH) {
         if (!p->write) atomic_inc(&reduce[LIGHT_OVERFLOW]);
