@@ -13,25 +13,12 @@
 #include "grid/channel_table.h"
 #include "render/light_frame.h"
 #include "render/render_scene.h"
+#include "test_lights.h"
 #include "test_support.h"
 #include "voxelize/voxelizer.h"
 
 namespace voxr {
 namespace {
-
-RenderLight directional(glm::vec3 d) {
-  Light l;
-  l.type = "directional";
-  l.direction = d;
-  return render_light(l, kDefaultEnvironment, glm::dvec3(0.0));
-}
-
-RenderLight point(glm::vec3 p) {
-  Light l;
-  l.type = "point";
-  l.position = p;
-  return render_light(l, kDefaultEnvironment, glm::dvec3(0.0));
-}
 
 // A tree (bark 0, leaves 1) on a floor (2) of `floor_size`.
 TriangleSoup tree_on_floor(float floor_size) {
@@ -111,12 +98,12 @@ TEST(DeviceLightFrame, TreeUnderAPointLightMatchesTheHost) {
   const TriangleSoup soup = tree_on_floor(6.0f);
   Bounds receivers = soup.bounds();
   receivers.lo += glm::vec3(0.5f, 0.0f, 0.3f);  // a camera's cut of the scene
-  expect_same_as_host(soup, point({3, 7, 2}), receivers, 96);
+  expect_same_as_host(soup, test::point_light({3, 7, 2}), receivers, 96);
 }
 
 TEST(DeviceLightFrame, TreeUnderADirectionalLightMatchesTheHost) {
   const TriangleSoup soup = tree_on_floor(6.0f);
-  expect_same_as_host(soup, directional({0.3f, -1.0f, 0.2f}), soup.bounds(), 96);
+  expect_same_as_host(soup, test::directional_light({0.3f, -1.0f, 0.2f}), soup.bounds(), 96);
 }
 
 TEST(DeviceLightFrame, CasterBehindTheNearCutMatchesTheHost) {
@@ -124,7 +111,7 @@ TEST(DeviceLightFrame, CasterBehindTheNearCutMatchesTheHost) {
   Bounds floor;
   floor.extend({-2.0f, 0.0f, -2.0f});
   floor.extend({2.0f, 0.0f, 2.0f});
-  expect_same_as_host(soup, point({0, 5, 0}), floor, 128);
+  expect_same_as_host(soup, test::point_light({0, 5, 0}), floor, 128);
 }
 
 TEST(DeviceLightFrame, CastersOutsideTheFootprintDoNotSetTheNearDepth) {
@@ -139,8 +126,8 @@ TEST(DeviceLightFrame, CastersOutsideTheFootprintDoNotSetTheNearDepth) {
   Bounds floor;
   floor.extend({-2.0f, 0.0f, -2.0f});
   floor.extend({2.0f, 0.0f, 2.0f});
-  expect_same_as_host(soup, point({0, 5, 0}), floor, 64);
-  const LightFrame f = fit_light_frame(point({0, 5, 0}), floor, soup, 64);
+  expect_same_as_host(soup, test::point_light({0, 5, 0}), floor, 64);
+  const LightFrame f = fit_light_frame(test::point_light({0, 5, 0}), floor, soup, 64);
   EXPECT_GT(f.near_depth, 3.5f);  // the leaf's depth (4) less the margin; the square is at 2
 }
 
@@ -150,8 +137,8 @@ TEST(DeviceLightFrame, OversizedTrianglesAreSplitAsOnTheHost) {
   Bounds receivers;
   receivers.extend({-2.0f, 0.0f, -2.0f});
   receivers.extend({2.0f, 3.0f, 2.0f});
-  EXPECT_GT(expect_same_as_host(soup, directional({0.3f, -1.0f, 0.2f}), receivers, 256), 0u);
-  EXPECT_GT(expect_same_as_host(soup, point({3, 7, 2}), receivers, 256), 0u);
+  EXPECT_GT(expect_same_as_host(soup, test::directional_light({0.3f, -1.0f, 0.2f}), receivers, 256), 0u);
+  EXPECT_GT(expect_same_as_host(soup, test::point_light({3, 7, 2}), receivers, 256), 0u);
 }
 
 }  // namespace

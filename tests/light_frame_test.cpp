@@ -6,30 +6,17 @@
 
 #include "render/light_frame.h"
 #include "render/render_scene.h"
+#include "test_lights.h"
 #include "test_support.h"
 
 namespace voxr {
 namespace {
 
-RenderLight directional(glm::vec3 d) {
-  Light l;
-  l.type = "directional";
-  l.direction = d;
-  return render_light(l, kDefaultEnvironment, glm::dvec3(0.0));
-}
-
-RenderLight point(glm::vec3 p) {
-  Light l;
-  l.type = "point";
-  l.position = p;
-  return render_light(l, kDefaultEnvironment, glm::dvec3(0.0));
-}
-
 TEST(LightFrame, AFloorUnderEverythingCastsNothingSoTheGridFitsTheLeaf) {
   TriangleSoup soup;
   test::add_square(soup, 0.0f, -10.0f, 10.0f, 0);  // a 20 x 20 floor
   test::add_square(soup, 1.0f, -0.5f, 0.5f, 1);    // a 1 x 1 leaf
-  const LightFrame f = fit_light_frame(directional({0, -1, 0}), soup.bounds(), soup, 64);
+  const LightFrame f = fit_light_frame(test::directional_light({0, -1, 0}), soup.bounds(), soup, 64);
   EXPECT_FALSE(f.projective());
   // 62 columns over the leaf's metre and one of margin each side: the floor's 20 m would need 0.32 m voxels.
   EXPECT_NEAR(f.grid.voxel_size, 1.0f / 62.0f, 1e-4f);
@@ -47,7 +34,7 @@ TEST(LightFrame, PointLightFrustumIsProjectiveWithDepthSlices) {
   TriangleSoup soup;
   test::add_square(soup, 0.0f, -10.0f, 10.0f, 0);
   test::add_square(soup, 1.0f, -0.5f, 0.5f, 1);
-  const LightFrame f = fit_light_frame(point({0, 5, 0}), soup.bounds(), soup, 64);
+  const LightFrame f = fit_light_frame(test::point_light({0, 5, 0}), soup.bounds(), soup, 64);
   ASSERT_TRUE(f.projective());
   EXPECT_EQ(f.grid.dims.z, 64u);
   // The nearest caster (the leaf, 4 below the light) starts the first slab; slabs are uniform in 1/depth.
@@ -77,7 +64,7 @@ TEST(LightFrame, TrianglesBehindAPointLightAreClippedAway) {
   Bounds receivers;
   receivers.extend({-2, 0, -2});
   receivers.extend({2, 1, 2});
-  const LightFrame f = fit_light_frame(point({0, 5, 0}), receivers, soup, 32);
+  const LightFrame f = fit_light_frame(test::point_light({0, 5, 0}), receivers, soup, 32);
   const TriangleSoup projected = project_to_light_grid(soup, f);
   for (size_t v = 0; v < projected.positions.size(); ++v)
     EXPECT_TRUE(std::isfinite(projected.positions[v].z) && projected.positions[v].z > -1e6f) << v;
@@ -88,12 +75,12 @@ TEST(LightFrame, APointLightAmongTheReceiversIsAClearError) {
   test::add_square(soup, 0.0f, -2.0f, 2.0f, 0);
   test::add_square(soup, 3.0f, -2.0f, 2.0f, 0);
   try {
-    fit_light_frame(point({0, 1, 0}), soup.bounds(), soup, 32);
+    fit_light_frame(test::point_light({0, 1, 0}), soup.bounds(), soup, 32);
     FAIL() << "expected an error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("lies among the receivers"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(fit_light_frame(directional({0, -1, 0}), soup.bounds(), soup, 1), Error);
+  EXPECT_THROW(fit_light_frame(test::directional_light({0, -1, 0}), soup.bounds(), soup, 1), Error);
 }
 
 }  // namespace

@@ -91,16 +91,6 @@ CheckedArgs check_args(const RefractionBenchOptions& args) {
   return c;
 }
 
-std::string fmt_number(double v, int digits) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  return fmt::format("{:.{}f}", v, digits);
-}
-
-std::string res_text(uint32_t res) {
-  return res ? std::to_string(res) : "";
-}
-
 }  // namespace
 
 const char* const kRefractionBenchMethodHelp =
@@ -184,7 +174,7 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const RefractionBenchOption
     for (const MethodCase& m : methods) {
       const std::vector<uint32_t> resolutions = m.grid ? args.resolutions : std::vector<uint32_t>{0};
       for (uint32_t res : resolutions) {
-        progress(fmt::format("{}: {} {}", label, m.label, res_text(res)));
+        progress(fmt::format("{}: {} {}", label, m.label, resolution_cell(res)));
         RenderOptions o;
         o.shadows = shadows;
         o.shadow_resolution = args.shadow_res;
@@ -232,9 +222,9 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const RefractionBenchOption
         fmt::print(
             "  {:<26} {:>4}: {:8.2f} ms [{:.2f}, {:.2f}] refraction {:.2f} ms{}  RMSE {:.4f} PSNR {} angle "
             "{:.2f}/{:.2f} deg events {:.2f}% nonfinite {}  {:.2f} MiB (load {})\n",
-            m.label, res_text(res), row.frame_ms, row.frame_min, row.frame_max, row.refraction_ms,
+            m.label, resolution_cell(res), row.frame_ms, row.frame_min, row.frame_max, row.refraction_ms,
             row.layers_ms > 0.0 ? fmt::format(" dm-layers {:.2f} ms", row.layers_ms) : std::string(),
-            row.error.rmse, fmt_number(row.error.psnr, 2), row.error.angle_mean_deg, row.error.angle_p95_deg,
+            row.error.rmse, number_cell(row.error.psnr, 2), row.error.angle_mean_deg, row.error.angle_p95_deg,
             100.0 * row.error.event_mismatch_share, row.error.nonfinite_pixels,
             double(row.grid_bytes) / (1 << 20), load_average_text());
         std::fflush(stdout);

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +30,16 @@ std::string utc_now() {
 
 std::string scene_label(const std::string& scene) {
   return scene == "default" ? "default" : std::filesystem::path(scene).stem().string();
+}
+
+std::string number_cell(double v, int digits) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  return fmt::format("{:.{}f}", v, digits);
+}
+
+std::string resolution_cell(uint32_t resolution) {
+  return resolution ? std::to_string(resolution) : "";
 }
 
 }  // namespace voxr

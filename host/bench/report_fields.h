@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 
 namespace voxr {
@@ -18,5 +19,11 @@ std::string utc_now();
 
 // A scene's label in tables: "default" for the built-in scene, else the file's stem.
 std::string scene_label(const std::string& scene);
+
+// `v` with `digits` decimals; "nan", "inf", "-inf" for those (a PSNR of equal images is inf).
+std::string number_cell(double v, int digits);
+
+// A grid resolution's cell: empty for 0 (a method without a grid).
+std::string resolution_cell(uint32_t resolution);
 
 }  // namespace voxr

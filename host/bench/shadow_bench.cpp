@@ -45,10 +45,6 @@ MethodCase parse_method_case(const std::string& label) {
 
 using Row = ShadowBenchRow;
 
-std::string fmt_psnr(double p) {
-  return std::isfinite(p) ? fmt::format("{:.2f}", p) : "inf";
-}
-
 }  // namespace
 
 ShadowBenchRun measure_shadows(ClRuntime& cl, const ShadowBenchOptions& options, const FreshRenders& fresh) {
@@ -137,7 +133,7 @@ ShadowBenchRun measure_shadows(ClRuntime& cl, const ShadowBenchOptions& options,
             "  {:<18} {:>4}: {:8.2f} ms [{:.2f}, {:.2f}]  RMSE {:.4f} max {:.3f} >0.05 {:.2f}%  PSNR {} "
             "({}; load {:.2f})\n",
             m.label, res, row.frame_ms, row.frame_min, row.frame_max, row.error.rmse, row.error.max_abs,
-            100.0 * row.error.share_over_threshold, fmt_psnr(row.psnr), row.light_grid, row.load);
+            100.0 * row.error.share_over_threshold, number_cell(row.psnr, 2), row.light_grid, row.load);
         std::fflush(stdout);
       }
     }

@@ -36,16 +36,6 @@ constexpr const char* kFrameIncludes =
 
 using Row = RefractionBenchRow;
 
-std::string fmt_number(double v, int digits) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  return fmt::format("{:.{}f}", v, digits);
-}
-
-std::string res_text(uint32_t res) {
-  return res ? std::to_string(res) : "";
-}
-
 // The benchmark's options with the size parsed. Throws voxr::Error naming what is wrong when a method, the
 // shadow method, the size or a scene file is not valid; touches no device.
 RefractionBenchOptions check_bench_refraction_args(const BenchRefractionArgs& args) {
@@ -87,12 +77,12 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
          "angle_mean_deg,angle_p95_deg,angle_pixels,event_mismatch,refracted_pixels,nonfinite,grid_bytes\n";
   for (const Row& r : rows)
     csv << fmt::format("{},{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{},{},{},{},{},{},{}\n",
-                       r.scene, r.triangles, r.method, r.step, r.normals, res_text(r.resolution), r.frame_ms,
-                       r.frame_min, r.frame_max, r.refraction_ms, r.layers_ms, fmt_number(r.error.rmse, 6),
-                       fmt_number(r.error.psnr, 3), fmt_number(r.error.angle_mean_deg, 4),
-                       fmt_number(r.error.angle_p95_deg, 4), r.error.angle_pixels,
-                       fmt_number(r.error.event_mismatch_share, 5), r.error.refracted_pixels,
-                       r.error.nonfinite_pixels, r.grid_bytes);
+                       r.scene, r.triangles, r.method, r.step, r.normals, resolution_cell(r.resolution),
+                       r.frame_ms, r.frame_min, r.frame_max, r.refraction_ms, r.layers_ms,
+                       number_cell(r.error.rmse, 6), number_cell(r.error.psnr, 3),
+                       number_cell(r.error.angle_mean_deg, 4), number_cell(r.error.angle_p95_deg, 4),
+                       r.error.angle_pixels, number_cell(r.error.event_mismatch_share, 5),
+                       r.error.refracted_pixels, r.error.nonfinite_pixels, r.grid_bytes);
 
   std::ostringstream md;
   md << fmt::format(
@@ -129,9 +119,9 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
         "{:.2f} |\n",
         r.method, r.step.empty() ? "-" : r.step, r.normals.empty() ? "-" : r.normals,
         r.resolution ? std::to_string(r.resolution) : "-", r.frame_ms, r.frame_min, r.frame_max,
-        r.refraction_ms, r.layers_ms > 0.0 ? fmt_number(r.layers_ms, 2) : "-", fmt_number(r.error.rmse, 4),
-        fmt_number(r.error.psnr, 2), fmt_number(r.error.angle_mean_deg, 2),
-        fmt_number(r.error.angle_p95_deg, 2), fmt_number(100.0 * r.error.event_mismatch_share, 2),
+        r.refraction_ms, r.layers_ms > 0.0 ? number_cell(r.layers_ms, 2) : "-", number_cell(r.error.rmse, 4),
+        number_cell(r.error.psnr, 2), number_cell(r.error.angle_mean_deg, 2),
+        number_cell(r.error.angle_p95_deg, 2), number_cell(100.0 * r.error.event_mismatch_share, 2),
         r.error.nonfinite_pixels, double(r.grid_bytes) / (1 << 20));
   }
   if (!precompute_table.empty())

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "bench/report_fields.h"
 #include "cl/cl_runtime.h"
 #include "cli/bench_support.h"
 #include "cli/commands.h"
@@ -25,10 +26,6 @@ namespace {
 constexpr const char* kSystemPython = "/usr/bin/python3";
 
 using Row = ShadowBenchRow;
-
-std::string fmt_psnr(double p) {
-  return std::isfinite(p) ? fmt::format("{:.2f}", p) : "inf";
-}
 
 }  // namespace
 
@@ -56,8 +53,8 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
   for (const Row& r : rows)
     csv << fmt::format("{},{},{},{},{:.3f},{:.3f},{:.3f},{:.5f},{:.4f},{:.5f},{},{},{},{},\"{}\"\n", r.scene,
                        r.method, r.mode, r.resolution, r.frame_ms, r.frame_min, r.frame_max, r.error.rmse,
-                       r.error.max_abs, r.error.share_over_threshold, fmt_psnr(r.psnr), r.error.receivers,
-                       r.triangles, r.device_bytes, r.light_grid);
+                       r.error.max_abs, r.error.share_over_threshold, number_cell(r.psnr, 2),
+                       r.error.receivers, r.triangles, r.device_bytes, r.light_grid);
   std::ostringstream md;
   md << fmt::format(
       "# voxr bench shadows\n\nDevice: {}. Image {}. Warm frames: median of {} after {} warm-up "
@@ -71,8 +68,8 @@ int run_bench_shadows(const BenchShadowsArgs& args) {
     md << fmt::format(
         "| {} | {} | {} | {} | {:.2f} | [{:.2f}, {:.2f}] | {:.4f} | {:.3f} | {:.2f}% | {} | {} |\n", r.scene,
         r.method, r.mode, r.resolution ? std::to_string(r.resolution) : "-", r.frame_ms, r.frame_min,
-        r.frame_max, r.error.rmse, r.error.max_abs, 100.0 * r.error.share_over_threshold, fmt_psnr(r.psnr),
-        r.light_grid);
+        r.frame_max, r.error.rmse, r.error.max_abs, 100.0 * r.error.share_over_threshold,
+        number_cell(r.psnr, 2), r.light_grid);
   if (!fresh_table.empty())
     md << "\nFresh processes, `voxr render SCENE --shadows voxel --shadow-res 256 --size " << args.size
        << "` (wall ms, median [min, max] of " << args.fresh << "; includes opening the device, loading the "
