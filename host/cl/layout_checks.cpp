@@ -24,6 +24,8 @@ static_assert(sizeof(VoxelRefractParams) == 48);
 static_assert(sizeof(ImageSpaceParams) == 16);
 static_assert(sizeof(DistanceMapParams) == 48);
 static_assert(sizeof(ShadowFrame) == 96);
+static_assert(sizeof(LightFitParams) == 112);
+static_assert(sizeof(LightPiecesParams) == 144);
 static_assert(sizeof(RasterParams) == 96);
 static_assert(offsetof(RasterParams, cull) == 92, "the cull flag took the former pad word");
 static_assert(sizeof(RasterPrim) == 88);

@@ -398,22 +398,12 @@ Defines light_defines() {
           {"LIGHT_SLOTS", std::to_string(kSlots)}};
 }
 
-// light_project.cl's LightFit and LightPieces, by value.
-struct LightFitArgs {
-  cl_float4 receivers_lo, receivers_hi, row0, row1, row2, light;
-  cl_uint projective;
-  cl_float eps, depth_floor;
-};
-static_assert(sizeof(LightFitArgs) == 112 && alignof(LightFitArgs) == 16);
-struct LightPiecesArgs {
-  cl_float4 m0, m1, m2, view0, view1, view2, light, dims;
-  cl_float z_min;
-  cl_uint projective, write, pad;
-};
-static_assert(sizeof(LightPiecesArgs) == 144 && alignof(LightPiecesArgs) == 16);
-
-cl_float4 f4(const glm::vec3& v, float w = 0.0f) {
-  return {{v.x, v.y, v.z, w}};
+// A float[4] field of a voxr_layout.h struct: xyz and w.
+void set4(float (&out)[4], const glm::vec3& v, float w = 0.0f) {
+  out[0] = v.x;
+  out[1] = v.y;
+  out[2] = v.z;
+  out[3] = w;
 }
 
 float key_value(uint32_t k) {
@@ -440,15 +430,15 @@ const LightFrame& DeviceLightFrame::fit(const RenderLight& light, const Bounds& 
   cl::Buffer& reduce = reduce_.ensure(cl_, kSlots * 4, "light fit reductions");
   cl::Kernel init = cl_.kernel("light_project.cl", "light_reduce_init", defines);
   cl_.launch("light_fit", init, 1, 1, reduce);
-  LightFitArgs args{};
-  args.receivers_lo = f4(receivers.lo);
-  args.receivers_hi = f4(receivers.hi);
+  LightFitParams args{};
+  set4(args.receivers_lo, receivers.lo);
+  set4(args.receivers_hi, receivers.hi);
   const glm::mat3 axes = glm::transpose(s.space.rows);  // columns: the rows of space.rows
-  args.row0 = f4(axes[0]);
-  args.row1 = f4(axes[1]);
-  args.row2 = f4(axes[2]);
-  args.light = light.directional ? f4(glm::vec3(light.direction[0], light.direction[1], light.direction[2]))
-                                 : f4(s.space.light);
+  set4(args.row0, axes[0]);
+  set4(args.row1, axes[1]);
+  set4(args.row2, axes[2]);
+  set4(args.light, light.directional ? glm::vec3(light.direction[0], light.direction[1], light.direction[2])
+                                     : s.space.light);
   args.projective = s.space.projective ? 1 : 0;
   args.eps = s.eps;
   args.depth_floor = s.depth_floor;
@@ -477,17 +467,17 @@ const DeviceMesh& DeviceLightFrame::light_mesh(const DeviceMesh& casters) {
   cl::Buffer& reduce = reduce_.ensure(cl_, kSlots * 4, "light fit reductions");
   cl::Kernel init = cl_.kernel("light_project.cl", "light_reduce_init", defines);
   cl_.launch("light_mesh", init, 1, 1, reduce);
-  LightPiecesArgs args{};
+  LightPiecesParams args{};
   const std::array<float, 12> m = f.grid.world_to_grid();
-  args.m0 = {{m[0], m[1], m[2], m[3]}};
-  args.m1 = {{m[4], m[5], m[6], m[7]}};
-  args.m2 = {{m[8], m[9], m[10], m[11]}};
+  std::copy(m.begin() + 0, m.begin() + 4, args.m0);
+  std::copy(m.begin() + 4, m.begin() + 8, args.m1);
+  std::copy(m.begin() + 8, m.begin() + 12, args.m2);
   const glm::mat3 view = glm::transpose(f.view);  // columns: the view's rows
-  args.view0 = f4(view[0]);
-  args.view1 = f4(view[1]);
-  args.view2 = f4(view[2]);
-  args.light = f4(f.light_position);
-  args.dims = f4(glm::vec3(f.grid.dims));
+  set4(args.view0, view[0]);
+  set4(args.view1, view[1]);
+  set4(args.view2, view[2]);
+  set4(args.light, f.light_position);
+  set4(args.dims, glm::vec3(f.grid.dims));
   args.z_min = 0.5f * f.near_depth;
   args.projective = f.projective() ? 1 : 0;
   const cl_uint n = casters.triangle_count();

@@ -49,7 +49,7 @@ typedef struct VoxGridParams {
  * CopyBox: the copies are the cells of a box `width` cells across from cell `first`, row by row (count =
  * width x rows). A cell packs a column in the low 16 bits and a row in the high 16. */
 #define VOXR_CELL(column, row) ((column) | ((row) << 16))
-#define VOXR_CELL_COLUMN(cell) ((cell) & 0xffffu)
+#define VOXR_CELL_COLUMN(cell) ((cell)&0xffffu)
 #define VOXR_CELL_ROW(cell) ((cell) >> 16)
 
 typedef struct CopyBox {
@@ -248,6 +248,31 @@ typedef struct ShadowFrame {
   float voxel_size; /* orthographic: the voxel edge in world units */
 } ShadowFrame;
 
+/* The light frame fitted on the device (host/render/light_frame.h DeviceLightFrame,
+ * kernels/render/shadow/light_project.cl), by value. Fit: which triangles can shadow the receivers' box and
+ * their light-space boxes; vectors as xyz + w, anchor-relative. */
+typedef struct LightFitParams {
+  float receivers_lo[4], receivers_hi[4]; /* the receivers' box */
+  float row0[4], row1[4], row2[4];        /* the light space's axes */
+  float light[4];                         /* point light: position; directional: the light's direction */
+  uint projective;                        /* point light */
+  float eps;                              /* casts_on's tolerance */
+  float depth_floor;                      /* point light: the near cut of casters */
+  uint pad;
+} LightFitParams;
+
+/* Light mesh pieces: projection into a point light's grid, near clip, oversize splitting. */
+typedef struct LightPiecesParams {
+  float m0[4], m1[4], m2[4]; /* the voxelized grid's world_to_grid rows (identity for a point light) */
+  float view0[4], view1[4], view2[4]; /* point light: the light view's axes */
+  float light[4];                     /* point light: anchor-relative position */
+  float dims[4];                      /* the grid's dims as floats */
+  float z_min;                        /* point light: the near clip (half the first slab's depth) */
+  uint projective;
+  uint write; /* 0: count, 1: write */
+  uint pad;
+} LightPiecesParams;
+
 /* ---- The kernel rasterizer (host/render/visibility_rasterizer.h, kernels/raster) ---- */
 
 /* Screen positions are snapped to 1/VOXR_SUBPIXEL pixel; coverage is then decided by exact 64-bit integer
@@ -362,6 +387,10 @@ typedef struct RenderCamera {
   OFFSET(RasterParams, material_count) OFFSET(RasterParams, guard) OFFSET(RasterParams, cull)             \
   SIZE(RasterPrim) OFFSET(RasterPrim, vertex_count) OFFSET(RasterPrim, flags)                             \
   OFFSET(RasterPrim, depth) OFFSET(RasterPrim, x) OFFSET(RasterPrim, y)                                   \
+  SIZE(LightFitParams) OFFSET(LightFitParams, receivers_hi) OFFSET(LightFitParams, row2)                 \
+  OFFSET(LightFitParams, light) OFFSET(LightFitParams, projective) OFFSET(LightFitParams, depth_floor)    \
+  SIZE(LightPiecesParams) OFFSET(LightPiecesParams, view0) OFFSET(LightPiecesParams, dims)                \
+  OFFSET(LightPiecesParams, z_min) OFFSET(LightPiecesParams, write)                                       \
   SIZE(RenderCamera) OFFSET(RenderCamera, eye) OFFSET(RenderCamera, width) OFFSET(RenderCamera, forward)   \
   OFFSET(RenderCamera, height) OFFSET(RenderCamera, right) OFFSET(RenderCamera, tan_half_fov_y)           \
   OFFSET(RenderCamera, up) OFFSET(RenderCamera, aspect)

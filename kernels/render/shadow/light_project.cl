@@ -76,14 +76,26 @@ inline int lf_clip_near(const float3* tri, float z_min, float3* out) {
   return n;
 }
 
+/* LightFitParams (voxr_layout.h) as vectors. */
 typedef struct LightFit {
-  float4 receivers_lo, receivers_hi; /* anchor-relative receivers' box */
-  float4 row0, row1, row2;           /* the light space's axes */
-  float4 light;                      /* point light: position; directional: the light's direction */
-  uint projective;                   /* point light */
-  float eps;                         /* casts_on's tolerance */
-  float depth_floor;                 /* point light: the near cut of casters */
+  float4 receivers_lo, receivers_hi, row0, row1, row2, light;
+  uint projective;
+  float eps, depth_floor;
 } LightFit;
+
+inline LightFit lf_fit(const LightFitParams a) {
+  LightFit f;
+  f.receivers_lo = vload4(0, a.receivers_lo);
+  f.receivers_hi = vload4(0, a.receivers_hi);
+  f.row0 = vload4(0, a.row0);
+  f.row1 = vload4(0, a.row1);
+  f.row2 = vload4(0, a.row2);
+  f.light = vload4(0, a.light);
+  f.projective = a.projective;
+  f.eps = a.eps;
+  f.depth_floor = a.depth_floor;
+  return f;
+}
 
 /* fit_light_frame's per-caster work: whether triangle (a, b, c) can shadow a corner of the receivers' box
  * (casts_on) and, if so, its light-space box (lo.xy, hi.xy) and nearest depth. Returns 0 for a triangle that
@@ -194,9 +206,10 @@ inline void lf_group_reduce(__local uint* scratch, const uint* keys, int n, uint
 /* Pass 0 of the fit: each caster's box and nearest depth (box.x = +inf: no caster) for pass 1, and the
  * casters' footprint. */
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void light_fit_casters(
-    LightFit fit, __global const float4* positions, __global const uint4* triangles, uint count,
+    LightFitParams fit_params, __global const float4* positions, __global const uint4* triangles, uint count,
     __global float4* boxes, __global float* nears, __global uint* reduce) {
   __local uint slots[4 * WG_SIZE];
+  const LightFit fit = lf_fit(fit_params);
   const uint t = get_global_id(0);
   float4 box = (float4)(INFINITY, INFINITY, -INFINITY, -INFINITY);
   float near = INFINITY;
@@ -241,16 +254,28 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void light_fit_nea
   lf_group_reduce(slots, keys, 1, 0u, has, reduce, LIGHT_NEAR);
 }
 
+/* LightPiecesParams (voxr_layout.h) as vectors. */
 typedef struct LightPieces {
-  float4 m0, m1, m2; /* the voxelized grid's world_to_grid rows (identity for a point light's grid) */
-  float4 view0, view1, view2; /* point light: the light view's axes */
-  float4 light;               /* point light: anchor-relative position */
-  float4 dims;                /* the grid's dims as floats */
-  float z_min;                /* point light: the near clip (half the first slab's depth) */
-  uint projective;
-  uint write; /* 0: count, 1: write */
-  uint pad;
+  float4 m0, m1, m2, view0, view1, view2, light, dims;
+  float z_min;
+  uint projective, write;
 } LightPieces;
+
+inline LightPieces lf_pieces(const LightPiecesParams a) {
+  LightPieces p;
+  p.m0 = vload4(0, a.m0);
+  p.m1 = vload4(0, a.m1);
+  p.m2 = vload4(0, a.m2);
+  p.view0 = vload4(0, a.view0);
+  p.view1 = vload4(0, a.view1);
+  p.view2 = vload4(0, a.view2);
+  p.light = vload4(0, a.light);
+  p.dims = vload4(0, a.dims);
+  p.z_min = a.z_min;
+  p.projective = a.projective;
+  p.write = a.write;
+  return p;
+}
 
 inline float3 lf_grid(const LightPieces* p, float3 w) {
   return (float3)(((p->m0.x * w.x + p->m0.y * w.y) + p->m0.z * w.z) + p->m0.w,
@@ -361,8 +386,9 @@ inline uint lf_split(const LightPieces* p, const float3* tri, uint material, ulo
 /* Point light: every vertex in the light's view and, in front of the near clip, in grid units (w = 1;
  * behind it w = 0), once, as project_to_light_grid does. */
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void light_vertices(
-    LightPieces p, ShadowFrame frame, __global const float4* positions, uint count,
+    LightPiecesParams params, ShadowFrame frame, __global const float4* positions, uint count,
     __global float4* projected) {
+  const LightPieces p = lf_pieces(params);
   const uint v = get_global_id(0);
   if (v >= count) return;
   const float3 q = lf_rows(p.view0, p.view1, p.view2, positions[v].xyz - p.light.xyz);
@@ -370,10 +396,12 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void light_vertice
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void light_pieces(
-    LightPieces p, ShadowFrame frame, __global const float4* positions, __global const uint4* triangles,
-    __global const float4* projected, uint count, __global uint* counts, __global const ulong* offsets,
-    ulong capacity, __global float4* out_positions, __global uint4* out_triangles, __global uint* reduce) {
+    LightPiecesParams params, ShadowFrame frame, __global const float4* positions,
+    __global const uint4* triangles, __global const float4* projected, uint count, __global uint* counts,
+    __global const ulong* offsets, ulong capacity, __global float4* out_positions,
+    __global uint4* out_triangles, __global uint* reduce) {
   __local uint slots[6 * WG_SIZE];
+  const LightPieces p = lf_pieces(params);
   const uint t = get_global_id(0);
   float3 lo = (float3)(FLT_MAX), hi = (float3)(-FLT_MAX);
   bool survived = false;
