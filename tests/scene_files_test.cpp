@@ -48,6 +48,8 @@ const SceneCounts kScenes[] = {
     {"thin-shell.json", 18050, 18050, false, nullptr},
     // Floor + sphere + torus (1,024) + box (12).
     {"sphere-nearby.json", 10062, 10062, false, nullptr},
+    // Floor + thin-walled vase 96 segments x 64 rows (24,960) + box (12) + torus 20 x 20 (800).
+    {"thin-vase-floor.json", 25774, 25774, false, nullptr},
     {"default.json", 8518, 8518, false, nullptr},
     {"refraction.json", 7816, 7816, false, nullptr},
     // Floor (2) + tree at density 108 (120 trunk + 2 x 32,400 leaves).
