@@ -340,6 +340,34 @@ TEST(ReferenceIntersect, CreaseRule) {
   }
 }
 
+// At a silhouette the shading normal can face away from a ray the geometric normal faces: it is turned by the
+// geometric normal's flip and then replaced by it (the resolve's rule, raster_resolve.cl), never flipped on
+// its own into the surface (issue 19: a "refracted" ray then left a glass surface while the path recorded it
+// inside). A gentle fold (faces 35 degrees off level, so the ridge's vertex normals survive the crease rule)
+// met near the ridge by a ray rising at 17 degrees towards it from the right: the front of the right face,
+// whose shading normal (nearly +y there) points along the ray.
+TEST(ReferenceIntersect, ShadingNormalFollowsTheGeometricNormalsSide) {
+  const float slope = 0.7f;
+  TriangleSoup soup;
+  const uint32_t r0 = add_vertex(soup, {0, 1, -1}), r1 = add_vertex(soup, {0, 1, 1});
+  const uint32_t l0 = add_vertex(soup, {-1, 1 - slope, -1}), l1 = add_vertex(soup, {-1, 1 - slope, 1});
+  const uint32_t q0 = add_vertex(soup, {1, 1 - slope, -1}), q1 = add_vertex(soup, {1, 1 - slope, 1});
+  soup.triangles.push_back({l0, l1, r1, kWall});
+  soup.triangles.push_back({l0, r1, r0, kWall});
+  soup.triangles.push_back({r0, r1, q1, kWall});
+  soup.triangles.push_back({r0, q1, q0, kWall});
+  const ReferenceScene scene(soup, test_materials());
+  const glm::vec3 d = glm::normalize(glm::vec3(-1.0f, 0.3f, 0.0f));
+  const glm::vec3 hit(0.05f, 1.0f - slope * 0.05f, 0.1f);
+  const SurfaceSample s = scene.intersect(hit - 2.0f * d, d);
+  ASSERT_GE(s.triangle, 2u);  // the right face
+  ASSERT_NE(s.triangle, VOXR_NO_TRIANGLE);
+  EXPECT_LT(glm::dot(geometric_of(s), d), 0.0f);
+  EXPECT_LE(glm::dot(normal_of(s), d), 0.0f);
+  EXPECT_GT(glm::dot(normal_of(s), geometric_of(s)), 0.0f) << "the shading normal points into the surface";
+  EXPECT_TRUE(near3(geometric_of(s), normal_of(s)));
+}
+
 // (g) A 32x24 render looking straight down: ambient where the rays miss, the hand-computed colour on a lit
 // floor pixel, a leaf pixel, and the flat glass colour.
 TEST(ReferenceRender, TinyScene) {

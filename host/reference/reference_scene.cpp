@@ -340,8 +340,15 @@ SurfaceSample ReferenceScene::intersect(const glm::vec3& origin, const glm::vec3
   const float shading_len = glm::length(shading);
   shading = shading_len > 0.0f ? shading / shading_len : glm::vec3(0.0f);
   if (!(glm::dot(shading, geometric) >= VOXR_CREASE_COS)) shading = geometric;
-  if (glm::dot(geometric, d) > 0.0f) geometric = -geometric;
-  if (glm::dot(shading, d) > 0.0f) shading = -shading;
+  // Turned towards the ray as the rasterizer's resolve does (raster_resolve.cl): the shading normal with the
+  // geometric one's flip, and the geometric normal where it still faces away. Flipping each on its own
+  // turned a silhouette's shading normal into the glass, so a "refracted" ray left the surface while the
+  // path recorded it inside.
+  if (glm::dot(geometric, d) > 0.0f) {
+    geometric = -geometric;
+    shading = -shading;
+  }
+  if (glm::dot(shading, d) > 0.0f) shading = geometric;
   for (int c = 0; c < 3; ++c) {
     s.position[c] = position[c];
     s.normal[c] = shading[c];

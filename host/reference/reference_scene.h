@@ -44,8 +44,9 @@ class ReferenceScene {
   // t * |dir| (world units); barycentric = Embree's (u, v), the weights of vertices 1 and 2. Shading normal:
   // render/vertex_normals.h interpolated with (1 - u - v, u, v) and normalized; where it deviates from the
   // triangle's normal by more than 45 degrees (a sharp crease) the triangle's normal is used, per corner
-  // first (voxr_layout.h VOXR_CREASE_COS), then for the interpolated normal. Each normal is then flipped on
-  // its own if it faces away from the origin. Throws voxr::Error for a zero or non-finite dir.
+  // first (voxr_layout.h VOXR_CREASE_COS), then for the interpolated normal. Both are then turned towards
+  // the origin by the geometric normal's flip, and a shading normal that still faces away is replaced by the
+  // geometric one (the resolve's rule). Throws voxr::Error for a zero or non-finite dir.
   SurfaceSample intersect(const glm::vec3& origin, const glm::vec3& dir, float t_near = 0.0f,
                           float t_far = 3.0e38f) const;
 
