@@ -315,19 +315,25 @@ TEST(ReferenceIntersect, KnownTriangle) {
   EXPECT_THROW(scene.intersect({0, 0, 0}, {0, 0, 0}), Error);
 }
 
+// A ridge along z at x = 0, y = 1, its faces down to y = 1 - slope at x = -1 (triangles 0, 1) and x = +1
+// (triangles 2, 3).
+TriangleSoup ridge(float slope) {
+  TriangleSoup soup;
+  const uint32_t r0 = add_vertex(soup, {0, 1, -1}), r1 = add_vertex(soup, {0, 1, 1});
+  const uint32_t l0 = add_vertex(soup, {-1, 1 - slope, -1}), l1 = add_vertex(soup, {-1, 1 - slope, 1});
+  const uint32_t q0 = add_vertex(soup, {1, 1 - slope, -1}), q1 = add_vertex(soup, {1, 1 - slope, 1});
+  soup.triangles.push_back({l0, l1, r1, kWall});
+  soup.triangles.push_back({l0, r1, r0, kWall});
+  soup.triangles.push_back({r0, r1, q1, kWall});
+  soup.triangles.push_back({r0, q1, q0, kWall});
+  return soup;
+}
+
 // The crease rule: at a sharp ridge the interpolated normal would lean more than 45 degrees off the face, so
 // the face's normal shades; on a gentle fold the interpolated normal is kept.
 TEST(ReferenceIntersect, CreaseRule) {
   for (const float slope : {4.0f, 0.1f}) {  // ridge faces rising at about 76 and 6 degrees
-    TriangleSoup soup;
-    // A ridge along z at x = 0, y = 1, its faces down to y = 1 - slope at x = -1 and x = +1.
-    const uint32_t r0 = add_vertex(soup, {0, 1, -1}), r1 = add_vertex(soup, {0, 1, 1});
-    const uint32_t l0 = add_vertex(soup, {-1, 1 - slope, -1}), l1 = add_vertex(soup, {-1, 1 - slope, 1});
-    const uint32_t q0 = add_vertex(soup, {1, 1 - slope, -1}), q1 = add_vertex(soup, {1, 1 - slope, 1});
-    soup.triangles.push_back({l0, l1, r1, kWall});
-    soup.triangles.push_back({l0, r1, r0, kWall});
-    soup.triangles.push_back({r0, r1, q1, kWall});
-    soup.triangles.push_back({r0, q1, q0, kWall});
+    const TriangleSoup soup = ridge(slope);
     const ReferenceScene scene(soup, test_materials());
     const SurfaceSample s = scene.intersect({0.05f, 10.0f, 0.1f}, {0.0f, -1.0f, 0.0f});  // near the ridge
     ASSERT_NE(s.triangle, VOXR_NO_TRIANGLE);
@@ -348,14 +354,7 @@ TEST(ReferenceIntersect, CreaseRule) {
 // whose shading normal (nearly +y there) points along the ray.
 TEST(ReferenceIntersect, ShadingNormalFollowsTheGeometricNormalsSide) {
   const float slope = 0.7f;
-  TriangleSoup soup;
-  const uint32_t r0 = add_vertex(soup, {0, 1, -1}), r1 = add_vertex(soup, {0, 1, 1});
-  const uint32_t l0 = add_vertex(soup, {-1, 1 - slope, -1}), l1 = add_vertex(soup, {-1, 1 - slope, 1});
-  const uint32_t q0 = add_vertex(soup, {1, 1 - slope, -1}), q1 = add_vertex(soup, {1, 1 - slope, 1});
-  soup.triangles.push_back({l0, l1, r1, kWall});
-  soup.triangles.push_back({l0, r1, r0, kWall});
-  soup.triangles.push_back({r0, r1, q1, kWall});
-  soup.triangles.push_back({r0, q1, q0, kWall});
+  const TriangleSoup soup = ridge(slope);
   const ReferenceScene scene(soup, test_materials());
   const glm::vec3 d = glm::normalize(glm::vec3(-1.0f, 0.3f, 0.0f));
   const glm::vec3 hit(0.05f, 1.0f - slope * 0.05f, 0.1f);
