@@ -48,6 +48,11 @@ std::string ClRuntime::load_source(const std::string& file) const {
 
 namespace {
 
+// The key of a built program in ClRuntime::programs_: its file and build options.
+std::string program_key(const std::string& file, const std::string& options) {
+  return file + "|" + options;
+}
+
 // Inlines `#include "x.h"` lines (each file once), so embedded sources need no include path.
 std::string expand_includes(const std::string& source,
                             const std::function<std::string(const std::string&)>& load,
@@ -121,7 +126,7 @@ cl::Program ClRuntime::load_program(const std::string& file, const std::string& 
 
 cl::Program& ClRuntime::program(const std::string& file, const Defines& defines) {
   const std::string options = build_options(defines);
-  const std::string memo_key = file + "|" + options;
+  const std::string memo_key = program_key(file, options);
   if (auto it = programs_.find(memo_key); it != programs_.end()) return it->second;
   const auto start = Clock::now();
   cl::Program program = load_program(file, options);
@@ -136,7 +141,7 @@ void ClRuntime::build_programs(const std::vector<ProgramSpec>& specs) {
   std::set<std::string> queued;
   for (const ProgramSpec& spec : specs) {
     std::string options = build_options(spec.defines);
-    const std::string memo_key = spec.file + "|" + options;
+    const std::string memo_key = program_key(spec.file, options);
     if (programs_.count(memo_key) == 0 && queued.insert(memo_key).second)
       todo.emplace_back(spec.file, std::move(options));
   }
@@ -162,7 +167,7 @@ void ClRuntime::build_programs(const std::vector<ProgramSpec>& specs) {
   }
   for (size_t i = 0; i < todo.size(); ++i) {
     if (errors[i]) std::rethrow_exception(errors[i]);
-    programs_.emplace(todo[i].first + "|" + todo[i].second, std::move(*built[i]));
+    programs_.emplace(program_key(todo[i].first, todo[i].second), std::move(*built[i]));
   }
   build_ms_ += ms_since(start);
 }
