@@ -5,15 +5,17 @@ usage: bench/pareto_charts.py CSV PAGE IMAGE_DIR [--command TEXT] [--device TEXT
 
 The CSV (voxr bench pareto) has one row per (effect, scene, method, resolution) with the columns
     effect,scene,method,resolution,time_ms,time_ms_min,time_ms_max,time_measure,error,error_measure,bytes,
-    load_1min,front
+    load_1min,reference,front
 front is 1 on the Pareto front of the row's (effect, scene) (computed by voxr: host/bench/pareto_front.h);
-resolution is empty for a method without one (image-space).
+reference is 1 for the effect's exact reference (error 0; CSVs from before 2026-12-02 have no such column and
+no reference rows); resolution is empty for a method without one (image-space).
 
 Writes IMAGE_DIR/EFFECT.png (one panel per scene: error on x, time on y, both log when they span a wide range;
-one colour and marker per method, points labelled with their resolution, the front as a step line: the lowest
-time reachable at each error) and PAGE: generated-by header, the pictures (linked relative to PAGE), and per
-effect and scene a "pick for a target error" table (for quantiles of the errors seen, the fastest run meeting
-them) and the front's runs. Needs python3 and matplotlib (Debian: python3-matplotlib).
+one colour and marker per method, points labelled with their resolution, each reference as a dashed line at
+its time (error 0: every run above the line is dominated by it), the front as a step line: the lowest time
+reachable at each error) and PAGE: generated-by header, the pictures (linked relative to PAGE), and per effect
+and scene a "pick for a target error" table (for quantiles of the methods' errors, the fastest run meeting
+them, the reference included), the front's runs, and every run with whether the reference dominates it. Needs python3 and matplotlib (Debian: python3-matplotlib).
 """
 import argparse
 import csv
@@ -67,7 +69,11 @@ def load(path):
                 sys.exit(f"{path}:{line}: column error must be a number (got {r['error']!r})")
             if r["front"] not in ("0", "1"):
                 sys.exit(f"{path}:{line}: column front must be 0 or 1 (got {r['front']!r})")
+            reference = r.get("reference") or "0"
+            if reference not in ("0", "1"):
+                sys.exit(f"{path}:{line}: column reference must be 0 or 1 (got {reference!r})")
             r["_time"], r["_error"], r["_front"] = time, error, r["front"] == "1"
+            r["_reference"] = reference == "1"
             rows.append(r)
     if not rows:
         sys.exit(f"{path}: no rows")
@@ -100,8 +106,9 @@ def round_up(value):
 
 
 def targets(rows):
-    """Target errors: the QUANTILES of the finite errors, rounded up to two significant digits, distinct."""
-    errors = [r["_error"] for r in rows if math.isfinite(r["_error"])]
+    """Target errors: the QUANTILES of the methods' finite errors (not the references' zeros), rounded up to two
+    significant digits, distinct."""
+    errors = [r["_error"] for r in rows if math.isfinite(r["_error"]) and not r["_reference"]]
     if not errors:
         return []
     return sorted(set(round_up(quantile(errors, q)) for q in QUANTILES))
@@ -117,16 +124,33 @@ def label(r):
     return r["resolution"] or "-"
 
 
+def reference_of(rows):
+    """The fastest reference row among rows, or None."""
+    refs = [r for r in rows if r["_reference"]]
+    return min(refs, key=lambda r: r["_time"]) if refs else None
+
+
+def dominated_by(run, reference):
+    """Whether the reference (error 0) is at least as fast as run: then run is never worth choosing."""
+    return reference is not None and run is not reference and reference["_time"] <= run["_time"]
+
+
 def chart(effect, rows, path):
     scenes = by(rows, lambda r: r["scene"])
-    methods = list(dict.fromkeys(r["method"] for r in rows))
+    methods = list(dict.fromkeys(r["method"] for r in rows if not r["_reference"]))
     style = {m: (f"C{i % 10}", MARKERS[i % len(MARKERS)]) for i, m in enumerate(methods)}
     fig, axes = plt.subplots(1, len(scenes), figsize=(6.4 * len(scenes), 5.2), squeeze=False)
     for ax, (scene, scene_rows) in zip(axes[0], scenes.items()):
-        shown = [r for r in scene_rows if math.isfinite(r["_error"])]
+        shown = [r for r in scene_rows if math.isfinite(r["_error"]) and not r["_reference"]]
         errors = [r["_error"] for r in shown]
         times = [r["_time"] for r in shown]
         log_x = bool(errors) and min(errors) > 0 and max(errors) / min(errors) > 20
+        # Error 0 has no place on a log axis: references and zero-error runs sit at its left edge.
+        left = min(errors) / 1.5 if log_x else 0.0
+        for ref in (r for r in scene_rows if r["_reference"]):
+            ax.axhline(ref["_time"], color="k", ls="--", lw=1.2, alpha=0.8,
+                       label=f"{ref['method']} (exact, error 0): {ref['_time']:.3g} ms")
+            times.append(ref["_time"])
         for m in methods:
             pts = sorted((r for r in shown if r["method"] == m), key=lambda r: r["_error"])
             if not pts:
@@ -143,12 +167,13 @@ def chart(effect, rows, path):
             for r in pts:
                 ax.annotate(label(r), (r["_error"], r["_time"]), fontsize=7, xytext=(4, 3),
                             textcoords="offset points")
-        front = sorted((r for r in shown if r["_front"]), key=lambda r: (r["_error"], r["_time"]))
+        front = sorted((r for r in scene_rows if r["_front"] and math.isfinite(r["_error"])),
+                       key=lambda r: (r["_error"], r["_time"]))
         if front:
-            xs = [r["_error"] for r in front]
+            xs = [max(r["_error"], left) for r in front]
             ys = [r["_time"] for r in front]
             # Beyond the least accurate front run, its time holds: extend the last step to the right edge.
-            right = max(errors) * (1.5 if log_x else 1.05)
+            right = max(errors + xs) * (1.5 if log_x else 1.05)
             ax.step(xs + [right], ys + [ys[-1]], where="post", color="k", lw=1.4, alpha=0.75, zorder=1,
                     label="Pareto front")
         measure = scene_rows[0]
@@ -193,8 +218,9 @@ def page(rows, images, page_path, args):
         "the lowest time a run reaches while being at least that accurate. To pick a method, go right to the "
         "error you can accept and down to the front; the tables below do this for a few targets (quantiles of "
         "the errors seen). Times are medians with [min, max] bars; errors are measured against exact "
-        "references, one measure per effect. The references' own times are not in the charts (see `voxr bench "
-        "shadows` and `voxr bench refraction`).",
+        "references, one measure per effect. Each exact reference is a run too (error 0, its frame time as the "
+        "effect's benchmark measures it: `voxr bench shadows`, `voxr bench refraction`), drawn as a dashed line: "
+        "a run above the line is dominated by the reference on this machine, whatever its error.",
     ]
     for effect, effect_rows in by(rows, lambda r: r["effect"]).items():
         first = effect_rows[0]
@@ -214,6 +240,21 @@ def page(rows, images, page_path, args):
             for r in front:
                 lines.append(f"| {r['method']} | {label(r)} | {fmt(r['_time'])} | [{fmt(number(r['time_ms_min']))}, "
                              f"{fmt(number(r['time_ms_max']))}] | {fmt(r['_error'])} | {r['bytes']} |")
+            ref = reference_of(scene_rows)
+            if ref is not None:
+                methods = [r for r in scene_rows if not r["_reference"]]
+                beaten = [r for r in methods if dominated_by(r, ref)]
+                names = sorted(set(r["method"] for r in beaten))
+                whole = sorted(m for m in names if all(dominated_by(r, ref) for r in methods if r["method"] == m))
+                lines += ["", f"The reference ({ref['method']}, {fmt(ref['_time'])} ms) dominates {len(beaten)} of "
+                          f"{len(methods)} runs" + (f"; every run of: {', '.join(whole)}" if whole else "") + "."]
+            lines += ["", "Every run, most accurate first:", "",
+                      "| method | resolution | time ms | error | front | dominated by the reference |",
+                      "|---|---:|---:|---:|:---:|:---:|"]
+            for r in sorted(scene_rows, key=lambda r: (r["_error"] if math.isfinite(r["_error"]) else math.inf,
+                                                        r["_time"])):
+                lines.append(f"| {r['method']} | {label(r)} | {fmt(r['_time'])} | {fmt(r['_error'])} | "
+                             f"{'yes' if r['_front'] else ''} | {'yes' if dominated_by(r, ref) else ''} |")
     with open(page_path, "w") as f:
         f.write("\n".join(lines) + "\n")
 

@@ -66,10 +66,10 @@ ShadowBenchOptions shadow_options(const ParetoBenchOptions& args) {
 std::vector<ParetoRow> shadow_rows(ClRuntime& cl, const ParetoBenchOptions& args) {
   std::vector<ParetoRow> rows;
   for (const ShadowBenchRow& r : measure_shadows(cl, shadow_options(args)).rows) {
-    if (r.method == "reference") continue;
-    const std::string method = r.mode == "-" ? r.method : r.method + "-" + r.mode;
+    const bool reference = r.method == "reference";
+    const std::string method = r.mode == "-" || reference ? r.method : r.method + "-" + r.mode;
     rows.push_back({"shadows", r.scene, method, r.resolution, r.frame_ms, r.frame_min, r.frame_max, "frame",
-                    r.error.rmse, "transmittance_rmse", r.device_bytes, r.load});
+                    reference ? 0.0 : r.error.rmse, "transmittance_rmse", r.device_bytes, r.load, reference});
   }
   return rows;
 }
@@ -88,11 +88,11 @@ RefractionBenchOptions refraction_options(const ParetoBenchOptions& args) {
 std::vector<ParetoRow> refraction_rows(ClRuntime& cl, const ParetoBenchOptions& args) {
   std::vector<ParetoRow> rows;
   for (const RefractionBenchRow& r : measure_refraction(cl, refraction_options(args)).rows) {
-    if (r.method == "reference-matched") continue;
+    const bool reference = r.method == "reference-matched";
     const std::string method =
         r.step.empty() ? r.method : fmt::format("{}-{}-{}", r.method, r.step, r.normals);
     rows.push_back({"refraction", r.scene, method, r.resolution, r.frame_ms, r.frame_min, r.frame_max,
-                    "frame", r.error.rmse, "image_rmse", r.grid_bytes, r.load});
+                    "frame", reference ? 0.0 : r.error.rmse, "image_rmse", r.grid_bytes, r.load, reference});
   }
   return rows;
 }

@@ -37,12 +37,12 @@ std::string number(double v, int digits) {
 std::string csv_text(const std::vector<ParetoRow>& rows) {
   std::ostringstream csv;
   csv << "effect,scene,method,resolution,time_ms,time_ms_min,time_ms_max,time_measure,error,error_measure,"
-         "bytes,load_1min,front\n";
+         "bytes,load_1min,reference,front\n";
   for (const ParetoRow& r : rows)
-    csv << fmt::format("{},{},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{},{:.2f},{}\n", r.effect, r.scene,
+    csv << fmt::format("{},{},{},{},{:.4f},{:.4f},{:.4f},{},{},{},{},{:.2f},{},{}\n", r.effect, r.scene,
                        r.method, r.resolution ? std::to_string(r.resolution) : "", r.time_ms, r.time_min,
                        r.time_max, r.time_measure, number(r.error, 6), r.error_measure, r.bytes, r.load,
-                       r.front ? 1 : 0);
+                       r.reference ? 1 : 0, r.front ? 1 : 0);
   return csv.str();
 }
 
