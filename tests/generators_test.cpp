@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <tuple>
 #include <utility>
 
 #include "core/generators.h"
@@ -118,6 +119,47 @@ TEST(Generators, VaseIsClosedWithAWall) {
   EXPECT_NEAR(signed_volume(cup) / expected, 1.0, 1e-5);
   // Outer surface, rim, inner surface, floor: rings = 2 * (rows + 1), all joined, two poles.
   EXPECT_EQ(cup.vertex_count(), size_t(2 * (p.rows + 1) * p.segments + 2));
+}
+
+TEST(Generators, VaseFilledWithALiquidSharesItsInnerFaces) {
+  VaseParams p;
+  p.height = 2.0f;
+  p.profile = {0.5f, 0.5f};
+  p.thickness = 0.1f;
+  p.segments = 24;
+  p.rows = 4;
+  p.fill = 0.5f;
+  const TriangleSoup glass = make_vase(p);
+  p.fill = 0.0f;
+  const TriangleSoup empty = make_vase(p);
+  // The vase itself is unchanged; the liquid is material 1, closed and outward.
+  ASSERT_GT(glass.triangle_count(), empty.triangle_count());
+  for (size_t i = 0; i < empty.triangle_count(); ++i) EXPECT_EQ(glass.triangles[i], empty.triangles[i]);
+  for (size_t i = 0; i < empty.vertex_count(); ++i) EXPECT_EQ(glass.positions[i], empty.positions[i]);
+  TriangleSoup liquid;
+  for (size_t i = empty.triangle_count(); i < glass.triangle_count(); ++i) {
+    EXPECT_EQ(glass.triangles[i].w, 1u);
+    liquid.triangles.push_back(glass.triangles[i]);
+  }
+  liquid.positions = glass.positions;
+  expect_closed_and_outward(liquid, "liquid");
+  // Fill 0.5 of rows 4: the inner surface up to row 2, y = 0.1 + 1.9 * 2 / 4. A cylinder of the inscribed
+  // polygon: exact volume.
+  const double r = 0.4, level = 0.1 + 1.9 * 0.5;
+  EXPECT_NEAR(signed_volume(liquid) / (polygon_factor(p.segments) * kPi * r * r * (level - 0.1)), 1.0, 1e-5);
+  // Every liquid vertex but its top centre is a vertex of the vase, bit for bit: the faces coincide.
+  std::map<std::tuple<float, float, float>, int> vase_vertices;
+  for (const glm::vec4& v : empty.positions) vase_vertices[{v.x, v.y, v.z}] = 1;
+  size_t own = 0;
+  for (size_t i = empty.vertex_count(); i < glass.vertex_count(); ++i) {
+    const glm::vec4 v = glass.positions[i];
+    if (!vase_vertices.count({v.x, v.y, v.z})) {
+      ++own;
+      EXPECT_FLOAT_EQ(v.x, 0.0f);
+      EXPECT_NEAR(v.y, level, 1e-6);
+    }
+  }
+  EXPECT_EQ(own, 1u);
 }
 
 TEST(Generators, TreeHasClosedTrunkAndSheetLeaves) {

@@ -164,7 +164,13 @@ TriangleSoup make_vase(const VaseParams& p) {
   VOXR_CHECK(p.profile.size() >= 2);
   for (float r : p.profile) VOXR_CHECK(r > p.thickness);
   VOXR_CHECK(p.segments >= 3 && p.rows >= 1);
+  VOXR_CHECK(p.fill >= 0.0f && p.fill <= 1.0f);
   const float h = p.height, t = p.thickness;
+  // The inner surface's outline point of row i (shared by the vase and its liquid: one expression).
+  const auto inner = [&](int i) {
+    const float y = t + (h - t) * float(i) / float(p.rows);
+    return glm::vec2(profile_radius(p.profile, y / h) - t, y);
+  };
   // Closed outline with the solid on its left: bottom centre, out and up the outside, across the rim,
   // down the inside, to the centre of the inner floor.
   std::vector<glm::vec2> outline{{0.0f, 0.0f}};
@@ -172,13 +178,19 @@ TriangleSoup make_vase(const VaseParams& p) {
     const float s = float(i) / float(p.rows);
     outline.push_back({profile_radius(p.profile, s), h * s});
   }
-  for (int i = p.rows; i >= 0; --i) {
-    const float y = t + (h - t) * float(i) / float(p.rows);
-    outline.push_back({profile_radius(p.profile, y / h) - t, y});
-  }
+  for (int i = p.rows; i >= 0; --i) outline.push_back(inner(i));
   outline.push_back({0.0f, t});
   TriangleSoup soup;
   add_lathe(soup, outline, p.segments, 0);
+  if (p.fill > 0.0f) {
+    // The liquid, solid on the left as the vase: inner floor centre, out along the floor, up the inner
+    // surface to the fill row, across its top to the axis.
+    const int top = std::max(1, int(std::lround(p.fill * float(p.rows))));
+    std::vector<glm::vec2> liquid{{0.0f, t}};
+    for (int i = 0; i <= top; ++i) liquid.push_back(inner(i));
+    liquid.push_back({0.0f, inner(top).y});
+    add_lathe(soup, liquid, p.segments, 1);
+  }
   return soup;
 }
 
@@ -280,13 +292,16 @@ TriangleSoup make_generated(const std::string& name, const nlohmann::json& param
     return make_box(lo, hi);
   }
   if (name == "vase") {
-    const JsonObjectReader in(object, where, path, {"height", "profile", "thickness", "segments", "rows"});
+    const JsonObjectReader in(object, where, path,
+                              {"height", "profile", "thickness", "segments", "rows", "fill"});
     VaseParams p;
     p.height = positive(in, "height", p.height);
     p.profile = in.numbers("profile", p.profile);
     p.thickness = positive(in, "thickness", p.thickness);
     p.segments = count(in, "segments", p.segments, 3);
     p.rows = count(in, "rows", p.rows, 1);
+    p.fill = in.number("fill", p.fill);
+    in.require(p.fill >= 0.0f && p.fill <= 1.0f, "fill", "must be in [0, 1]");
     in.require(p.profile.size() >= 2, "profile", "needs at least 2 radii");
     for (float r : p.profile)
       in.require(r > p.thickness, "profile",

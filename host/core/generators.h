@@ -33,13 +33,18 @@ TriangleSoup make_box(glm::vec3 lo = glm::vec3(-0.5f), glm::vec3 hi = glm::vec3(
 // `thickness` thick. `profile` holds outer radii at evenly spaced heights from the bottom (first) to the top
 // (last); the outline between them is a Catmull-Rom curve clamped between neighbouring radii, sampled at
 // `rows` heights. Needs height > 2*thickness, thickness > 0, at least 2 profile radii all > thickness,
-// segments >= 3, rows >= 1.
+// segments >= 3, rows >= 1, fill in [0, 1].
+// `fill` > 0 adds the liquid it holds (material 1; the vase is material 0): a closed solid filling the inside
+// from the inner floor up to the inner surface's row nearest to fill x the inner height (at least the first),
+// topped by a flat disc. Its floor and side are the vase's inner vertices bit for bit (the same outline
+// points), so the two dielectrics share those faces exactly (a glass of water).
 struct VaseParams {
   float height = 1.0f;
   std::vector<float> profile{0.30f, 0.42f, 0.45f, 0.36f, 0.22f, 0.20f, 0.26f};
   float thickness = 0.03f;
   int segments = 48;  // around the axis
   int rows = 32;      // along the height, per surface
+  float fill = 0.0f;  // fraction of the inner height the liquid fills; 0: no liquid
 };
 TriangleSoup make_vase(const VaseParams& params = {});
 
@@ -80,8 +85,8 @@ const std::vector<std::string>& generator_names();
 // Runs generator `name` ("torus", "sphere", "box", "vase", "tree", "plane", "foliage") with parameters from
 // the JSON object `params` (null or {} for all defaults). Keys are the parameter names above: torus {major,
 // minor, rings, sides}, sphere {radius, stacks, slices}, box {lo, hi}, vase {height, profile, thickness,
-// segments, rows}, tree {density, seed, leaf_scale}, plane {size, subdivisions}, foliage {size, leaves or density (leaves
-// per unit volume; not both), leaf_size, seed}. Throws voxr::Error starting with `where` (the
+// segments, rows}, tree {density, seed, leaf_scale}, plane {size, subdivisions}, foliage {size, leaves or
+// density (leaves per unit volume; not both), leaf_size, seed}. Throws voxr::Error starting with `where` (the
 // scene file, say) for an unknown name, an unknown key, a wrong type or an out-of-range value, naming the
 // key as `path`.key.
 TriangleSoup make_generated(const std::string& name, const nlohmann::json& params, const std::string& where,
