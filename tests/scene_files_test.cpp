@@ -50,6 +50,14 @@ const SceneCounts kScenes[] = {
     {"sphere-nearby.json", 10062, 10062, false, nullptr},
     // Floor + thin-walled vase 96 segments x 64 rows (24,960) + box (12) + torus 20 x 20 (800).
     {"thin-vase-floor.json", 25774, 25774, false, nullptr},
+    // Floor + bottle 64 segments x 64 rows (16,640) + ball 16 x 32 (960) + box (12).
+    {"bottle-floor.json", 17614, 17614, false, nullptr},
+    // Floor + table box + torus 20 x 20 + tumbler 64 x 32 (8,448) + its water, 20 rings (2,560).
+    {"glass-of-water.json", 11822, 11822, false, nullptr},
+    // Floor + pane box + sphere 16 x 32 + box + torus 20 x 20.
+    {"window-pane.json", 1786, 1786, false, nullptr},
+    // Floor + table box + two vases 48 x 32 (6,336 each) + ball 16 x 32.
+    {"glass-through-glass.json", 13646, 13646, false, nullptr},
     {"default.json", 8518, 8518, false, nullptr},
     {"refraction.json", 7816, 7816, false, nullptr},
     // Floor (2) + tree at density 108 (120 trunk + 2 x 32,400 leaves).
