@@ -365,8 +365,10 @@ bool ReferenceScene::Impl::nearest(const glm::vec3& origin, const glm::vec3& d, 
       out = {rh.ray.tfar, rh.hit.primID, rh.hit.u, rh.hit.v};
   });
   if (out.triangle == VOXR_NO_TRIANGLE) return false;
-  // Every hit within the merge distance beyond it: the one that wins is opaque if any is, then the lowest
-  // triangle id; t itself (which rounding orders) has no say.
+  // An opaque nearest hit wins (of coincident opaque ones the nearer, then the lower id: deterministic, and
+  // either ends the ray). Otherwise every hit within the merge distance beyond it: the one that wins is
+  // opaque if any is, then the lowest triangle id; t itself (which rounding orders) has no say.
+  if (materials[triangles[out.triangle].w].kind == MaterialKind::kOpaque) return true;
   std::vector<RayHit> window;
   context.embree.filter = skip_left;
   context.window = &window;

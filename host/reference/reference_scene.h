@@ -42,8 +42,9 @@ class ReferenceScene {
   // angle-weighted vertex normals, as the rasterizer's resolve does).
   // Coincident hits: of the hits less than kMergeDistance * scene_size() beyond the nearest (coplanar
   // surfaces, e.g. a glass face standing on a floor, which float rounding orders either way), an opaque one
-  // wins over a sheet or a dielectric, and of equal standing the lowest triangle id: the result does not
-  // depend on BVH order, rounding's choice or the thread count.
+  // wins over a sheet or a dielectric (an opaque nearest hit wins outright: of coincident opaque ones the
+  // nearer, then the lower id), and among sheets and dielectrics the lowest triangle id: the result does
+  // not depend on BVH order, rounding's choice between kinds or the thread count.
   // Embree traces the normalized direction: position = origin + t * dir as Embree found it, distance =
   // t * |dir| (world units); barycentric = Embree's (u, v), the weights of vertices 1 and 2. Shading normal:
   // render/vertex_normals.h interpolated with (1 - u - v, u, v) and normalized; where it deviates from the
