@@ -292,8 +292,9 @@ struct GlassOnFloor {
   }
 };
 
-// Of coincident hits an opaque one wins, whichever triangle comes first in the soup; of two dielectrics the
-// lowest triangle id. A ray leaving a face skips it and its neighbours at the origin, nothing else.
+// Of coincident hits an opaque one wins, whichever triangle comes first in the soup; of two dielectrics
+// one the ray enters, then the lowest triangle id. A ray leaving a face skips it and its neighbours at the
+// origin, nothing else.
 TEST(ReferenceScene, CoincidentOpaqueWinsAndLeavingSkipsOnlyTheTriangleLeft) {
   for (int opaque_first = 0; opaque_first < 2; ++opaque_first) {
     TriangleSoup soup;
@@ -318,6 +319,22 @@ TEST(ReferenceScene, CoincidentOpaqueWinsAndLeavingSkipsOnlyTheTriangleLeft) {
       EXPECT_LT(s.triangle, 2u);  // the lower pair
       EXPECT_EQ(s.material, 1u);
     }
+  }
+  // Two solids sharing a face (the plane x = 0, vertices of their own): a ray in the glass enters the flint
+  // there before it leaves the glass, whichever comes first in the soup.
+  for (int flint_first = 0; flint_first < 2; ++flint_first) {
+    TriangleSoup soup;
+    for (int k = 0; k < 2; ++k) {
+      const bool flint = (k == 0) == (flint_first == 1);
+      add_flat_box(soup, flint ? glm::vec3(0, -1, -1) : glm::vec3(-1, -1, -1),
+                   flint ? glm::vec3(1, 1, 1) : glm::vec3(0, 1, 1), glm::mat3(1.0f), flint ? 1 : 0);
+    }
+    const std::vector<Material> materials{glass(1.5f, glm::vec3(0.0f)), glass(1.8f, glm::vec3(0.0f))};
+    const ReferenceScene scene(soup, materials);
+    const SurfaceSample s = scene.intersect(glm::vec3(-0.5f, 0.4f, 0.1f), glm::vec3(1.0f, -0.2f, 0.05f));
+    ASSERT_NE(s.triangle, VOXR_NO_TRIANGLE);
+    EXPECT_EQ(s.material, 1u) << "flint first " << flint_first;
+    EXPECT_NEAR(s.position[0], 0.0f, 1e-5f);
   }
   const GlassOnFloor g;
   const ReferenceScene scene(g.soup, g.materials);

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <numeric>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
@@ -367,7 +368,9 @@ bool ReferenceScene::Impl::nearest(const glm::vec3& origin, const glm::vec3& d, 
   if (out.triangle == VOXR_NO_TRIANGLE) return false;
   // An opaque nearest hit wins (of coincident opaque ones the nearer, then the lower id: deterministic, and
   // either ends the ray). Otherwise every hit within the merge distance beyond it: the one that wins is
-  // opaque if any is, then the lowest triangle id; t itself (which rounding orders) has no say.
+  // opaque if any is, then one the ray enters (its winding faces the ray: glass to water at a shared face is
+  // one interface, not glass to air to water), then the lowest triangle id; t itself (which rounding orders)
+  // has no say.
   if (materials[triangles[out.triangle].w].kind == MaterialKind::kOpaque) return true;
   std::vector<RayHit> window;
   context.embree.filter = skip_left;
@@ -378,7 +381,8 @@ bool ReferenceScene::Impl::nearest(const glm::vec3& origin, const glm::vec3& d, 
     rtcIntersect1(scene, &context.embree, &rh);
   });
   const auto rank = [&](const RayHit& h) {
-    return std::pair(materials[triangles[h.triangle].w].kind == MaterialKind::kOpaque ? 0 : 1, h.triangle);
+    return std::tuple(materials[triangles[h.triangle].w].kind == MaterialKind::kOpaque ? 0 : 1,
+                      glm::dot(face_normal(h.triangle), d) < 0.0f ? 0 : 1, h.triangle);
   };
   const float t0 = out.t;
   for (const RayHit& h : window)

@@ -43,8 +43,9 @@ class ReferenceScene {
   // Coincident hits: of the hits less than kMergeDistance * scene_size() beyond the nearest (coplanar
   // surfaces, e.g. a glass face standing on a floor, which float rounding orders either way), an opaque one
   // wins over a sheet or a dielectric (an opaque nearest hit wins outright: of coincident opaque ones the
-  // nearer, then the lower id), and among sheets and dielectrics the lowest triangle id: the result does
-  // not depend on BVH order, rounding's choice between kinds or the thread count.
+  // nearer, then the lower id); among sheets and dielectrics one the ray enters (its winding's normal faces
+  // the ray) wins over one it leaves, so two solids sharing a face are one interface, then the lowest
+  // triangle id: the result does not depend on BVH order, rounding's choice or the thread count.
   // Embree traces the normalized direction: position = origin + t * dir as Embree found it, distance =
   // t * |dir| (world units); barycentric = Embree's (u, v), the weights of vertices 1 and 2. Shading normal:
   // render/vertex_normals.h interpolated with (1 - u - v, u, v) and normalized; where it deviates from the
@@ -74,7 +75,9 @@ class ReferenceScene {
   // or a neighbouring coplanar triangle. A surface closer than that to the receiver casts no shadow on it.
   static constexpr float kStartEpsilon = 1e-5f;
   // Hits less than kMergeDistance * scene_size() apart along a shadow ray, on triangles that share a vertex
-  // index, are one meeting of the ray with one surface (at a shared edge or vertex).
+  // index, are one meeting of the ray with one surface (at a shared edge or vertex). The same tolerance says
+  // which hits are coincident (intersect) and how near its origin a leaving ray skips the surface it left
+  // (intersect_leaving).
   static constexpr float kMergeDistance = 1e-5f;
 
   // RGB transmittance from `point` (on triangle `self`, VOXR_NO_TRIANGLE for none) to the light, along the
