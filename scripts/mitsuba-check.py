@@ -6,14 +6,15 @@ plane: the contact case of issue 19) and a turned glass box floating beside it, 
 per face corner (flat normals in both renderers), a constant sky, a black floor (so a pixel shows only what
 the glass reflects and transmits from the sky: no light-model difference, no shadows) and no light. It
 renders them with `voxr render --refraction reference-full` (exact Fresnel at every interface, as Mitsuba's
-`dielectric` BSDF; Beer-Lambert inside, as a homogeneous absorbing medium with `volpath`) and with Mitsuba
-(scalar_rgb, box-filtered pixels, --spp samples), and prints the RMSE (linear RGB) on
+`dielectric` BSDF; Beer-Lambert inside, as a homogeneous absorbing medium with `volpath`; --supersample^2
+pixel centres averaged per pixel) and with Mitsuba (scalar_rgb, box-filtered pixels, --spp samples), and
+prints the RMSE (linear RGB) on
   - the floating box's pixels (away from contacts), and
   - the standing box's pixels (rays that meet the glass-on-floor contact),
-each on pixels 2 away from any silhouette or face edge (Mitsuba integrates the pixel, voxr traces its
-centre), with Mitsuba's own noise (two seeds) beside them. Needs `pip install mitsuba` (docs/methods.md, "Cross-check against Mitsuba 3"):
+each on pixels 2 away from any silhouette or face edge, with Mitsuba's own noise (two seeds) beside them.
+Needs Mitsuba 3 and numpy (docs/methods.md, "Cross-check against Mitsuba 3"):
 
-    python3 -m venv build/mitsuba-venv && build/mitsuba-venv/bin/pip install mitsuba
+    python3 -m venv build/mitsuba-venv && build/mitsuba-venv/bin/pip install mitsuba numpy
     build/mitsuba-venv/bin/python scripts/mitsuba-check.py --voxr build/voxr --out build/mitsuba-check
 """
 
@@ -161,6 +162,8 @@ def main():
     ap.add_argument("--size", default="160x120")
     ap.add_argument("--spp", type=int, default=1024)
     ap.add_argument("--refraction", default="reference-full", help="voxr's method (reference-full or reference)")
+    ap.add_argument("--supersample", type=int, default=4,
+                    help="voxr renders N x N pixel centres per pixel, averaged (a box filter, as Mitsuba's)")
     args = ap.parse_args()
     import mitsuba as mi
 
@@ -169,14 +172,16 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     scene = write_scene(args.out, width, height)
     voxr_exr = os.path.join(args.out, "voxr.exr")
-    subprocess.run([args.voxr, "render", scene, "--refraction", args.refraction, "-o", voxr_exr, "--quiet"],
-                   check=True)
+    k = args.supersample
+    subprocess.run([args.voxr, "render", scene, "--refraction", args.refraction, "--size",
+                    f"{width * k}x{height * k}", "-o", voxr_exr, "--quiet"], check=True)
     ours = np.array(mi.Bitmap(voxr_exr), dtype=np.float64)[:, :, :3]
+    ours = ours.reshape(height, k, width, k, 3).mean(axis=(1, 3))
     theirs, first, face = render_mitsuba(mi, args.out, width, height, args.spp, 0)
     again, _, _ = render_mitsuba(mi, args.out, width, height, args.spp, 1)  # Mitsuba's own noise
     mi.Bitmap(theirs.astype(np.float32)).write(os.path.join(args.out, "mitsuba.exr"))
-    print(f"voxr --refraction {args.refraction} against Mitsuba {mi.__version__} (scalar_rgb, {args.spp} spp, "
-          f"{width}x{height}), linear RGB, pixels 2 away from any face edge:")
+    print(f"voxr --refraction {args.refraction} ({k}x{k} centres per pixel) against Mitsuba {mi.__version__} "
+          f"(scalar_rgb, {args.spp} spp, {width}x{height}), linear RGB, pixels 2 away from any face edge:")
     keep = interior(face, 2)
     for name, label in ((2, "floating glass (away from contacts)"), (1, "glass standing on the floor (contact)")):
         mask = keep & (first == name)
