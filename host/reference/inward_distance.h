@@ -13,9 +13,10 @@
 namespace voxr {
 
 // One distance per vertex of `soup` (soup.positions order, world units): from the vertex along
-// -vertex_normals[v] to the first surface of the same dielectric (ReferenceScene::intersect from a small
-// offset, 1e-4 of the scene's size, so the vertex's own triangles are not hit; surfaces of other materials
-// on the way, e.g. an object inside the glass, are passed). -1 (unknown: image-space then uses d_V alone) for
+// -vertex_normals[v] to the first surface of the same dielectric (ReferenceScene::intersect_leaving from
+// the vertex's first dielectric triangle, so it and the vertex's fan are not hit; surfaces of other
+// materials on the way, e.g. an object inside the glass, are passed, and so are surfaces met at the vertex
+// itself, within ReferenceScene::kMergeDistance). -1 (unknown: image-space then uses d_V alone) for
 // vertices of no dielectric triangle and where the ray finds nothing. A vertex's dielectric is the material
 // of the first dielectric triangle (in soup order) that uses it. `materials` are the ones `scene` was built
 // with (the ReferenceScene does not expose them): they say which triangles are dielectric. `vertex_normals`

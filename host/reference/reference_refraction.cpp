@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <span>
 
 #include "reference/parallel_blocks.h"
 #include "refraction.h"
@@ -15,13 +17,11 @@ namespace {
 
 // Nested dielectrics tracked, as refract_voxel.cl's MAX_MEDIA (entering a fifth is not recorded).
 constexpr uint32_t kMaxMedia = 4;
-// Rays that leave a surface ignore hits nearer than this, relative to ReferenceScene::scene_size(): the
-// surface they leave (its hit point lies off its plane by rounding) and its neighbours at a shared edge.
-constexpr float kSurfaceEpsilon = 1e-4f;
 // Surfaces met along one path or branch at most (sheets included): a guard against rays caught between
 // coincident surfaces; a path that reaches it is lost.
 constexpr uint32_t kMaxSegments = 4096;
-// Full model: branches whose weight (largest channel) falls below this are not traced.
+// Full model: branches whose weight (largest channel) falls below this are not traced: the interface
+// limit adapts to the throughput left.
 constexpr float kMinBranchWeight = 1e-3f;
 
 glm::vec3 vec(const float* v) {
@@ -72,6 +72,25 @@ SurfaceSample no_surface() {
   return s;
 }
 
+// The triangles a ray leaves (ReferenceScene::intersect_leaving): the one it left, and before it those met
+// at the same point (a coincident surface passed within the merge distance), at most 8.
+struct Leaving {
+  uint32_t id[8] = {};
+  uint32_t count = 0;
+
+  explicit Leaving(uint32_t triangle) : count(1) { id[0] = triangle; }
+  std::span<const uint32_t> ids() const { return {id, count}; }
+  // The set after leaving `hit`, met `hit.distance` from the point left.
+  Leaving after(const SurfaceSample& hit, float merge) const {
+    Leaving next = *this;
+    if (hit.distance <= merge && count < 8)
+      next.id[next.count++] = hit.triangle;
+    else
+      next = Leaving(hit.triangle);
+    return next;
+  }
+};
+
 // The media a path is inside, innermost last (refract_voxel.cl's media[] and depth).
 struct Media {
   uint32_t id[kMaxMedia] = {};
@@ -97,13 +116,13 @@ struct Media {
 class Tracer {
  public:
   Tracer(const ReferenceScene& scene, const std::vector<RenderMaterial>& materials, const RenderLight& light,
-         const EnvironmentMap& environment, uint32_t full_depth)
+         const EnvironmentMap& environment, uint32_t max_interfaces)
       : scene_(scene),
         materials_(materials),
         light_(light),
         environment_(environment),
-        epsilon_(kSurfaceEpsilon * scene.scene_size()),
-        full_depth_(full_depth) {}
+        merge_(ReferenceScene::kMergeDistance * scene.scene_size()),
+        max_interfaces_(max_interfaces) {}
 
   // The matched model (refract_voxel.cl's, exact triangles for voxels) for the camera ray eye + t dir.
   void matched(const glm::vec3& eye, glm::vec3 dir, SurfaceSample& end, RefractionPath& path) const {
@@ -131,14 +150,16 @@ class Tracer {
 
     end = no_surface();
     bool ended = false;
+    Leaving left(s.triangle);
     for (uint32_t segment = 0;; ++segment) {
       if (segment >= kMaxSegments) {
         events |= VOXR_PATH_LOST;
         ended = true;
         break;
       }
-      const SurfaceSample hit = scene_.intersect(here, dir, epsilon_);
+      const SurfaceSample hit = scene_.intersect_leaving(here, dir, left.ids());
       if (hit.triangle == VOXR_NO_TRIANGLE) break;  // leaves the scene: the environment
+      left = left.after(hit, merge_);
       if (media.depth > 0) throughput *= absorption(media, hit.distance);
       here = vec(hit.position);
       const RenderMaterial& m = material(hit.material);
@@ -186,17 +207,20 @@ class Tracer {
     store(path.exit_direction, dir);
   }
 
-  // The full model: radiance along origin + t dir (t > t_near) for a ray inside `media` that has met
-  // `interfaces` dielectric interfaces so far and carries `weight` (its largest channel) to the pixel.
-  // `camera`: the camera ray itself, whose first surface is shaded whether opaque or a sheet (as the
-  // primary sample of every other method); any later ray crosses sheets, multiplied by their transmittance.
+  // The full model: radiance along origin + t dir for a ray inside `media` that leaves the triangles
+  // `left` (none: the camera ray) having met `interfaces` dielectric interfaces so far, and carries
+  // `weight` (its largest channel) to the pixel. The camera ray's first surface is shaded whether opaque or
+  // a sheet (as the primary sample of every other method); any later ray crosses sheets, multiplied by
+  // their transmittance.
   glm::vec3 full(glm::vec3 origin, const glm::vec3& dir, const Media& media, uint32_t interfaces,
-                 float weight, bool camera) const {
+                 float weight, std::optional<Leaving> left) const {
+    const bool camera = !left;
     glm::vec3 carried(1.0f);
-    float t_near = camera ? 0.0f : epsilon_;
     for (uint32_t segment = 0; segment < kMaxSegments; ++segment) {
-      const SurfaceSample hit = scene_.intersect(origin, dir, t_near);
+      const SurfaceSample hit =
+          left ? scene_.intersect_leaving(origin, dir, left->ids()) : scene_.intersect(origin, dir);
       if (hit.triangle == VOXR_NO_TRIANGLE) return carried * environment_.lookup(dir);
+      const Leaving next_left = left ? left->after(hit, merge_) : Leaving(hit.triangle);
       if (media.depth > 0) carried *= absorption(media, hit.distance);
       const glm::vec3 here = vec(hit.position);
       const RenderMaterial& m = material(hit.material);
@@ -207,10 +231,10 @@ class Tracer {
       if (m.kind == VOXR_MATERIAL_SHEET) {
         carried *= vec(m.transmittance);
         origin = here;
-        t_near = epsilon_;
+        left = next_left;
         continue;
       }
-      if (interfaces >= full_depth_) return glm::vec3(0.0f);
+      if (interfaces >= max_interfaces_) return glm::vec3(0.0f);  // a guard against loops only
       const int inside = media.find(hit.material);
       if (inside < 0 && media.full()) return glm::vec3(0.0f);  // nested deeper than the stack holds
       const float n1 = top_ior(media);
@@ -224,14 +248,14 @@ class Tracer {
       const float w = weight * std::max({carried.x, carried.y, carried.z});
       glm::vec3 radiance(0.0f);
       if (f * w >= kMinBranchWeight)
-        radiance += f * full(here, reflect(dir, normal), media, interfaces + 1, f * w, false);
+        radiance += f * full(here, reflect(dir, normal), media, interfaces + 1, f * w, next_left);
       if (refracted && (1.0f - f) * w >= kMinBranchWeight) {
         Media next = media;
         if (inside >= 0)
           next.remove(inside);
         else
           next.push(hit.material);
-        radiance += (1.0f - f) * full(here, t_dir, next, interfaces + 1, (1.0f - f) * w, false);
+        radiance += (1.0f - f) * full(here, t_dir, next, interfaces + 1, (1.0f - f) * w, next_left);
       }
       return carried * radiance;
     }
@@ -268,8 +292,8 @@ class Tracer {
   const std::vector<RenderMaterial>& materials_;
   const RenderLight& light_;
   const EnvironmentMap& environment_;
-  float epsilon_;
-  uint32_t full_depth_;
+  float merge_;  // ReferenceScene::kMergeDistance in world units
+  uint32_t max_interfaces_;
 };
 
 }  // namespace
@@ -278,7 +302,7 @@ RefractionReference render_refraction_reference(const ReferenceScene& scene,
                                                 const std::vector<RenderMaterial>& materials,
                                                 const RenderLight& light, const EnvironmentMap& environment,
                                                 const CameraFrame& camera, ReferenceModel model,
-                                                uint32_t full_depth) {
+                                                uint32_t max_interfaces) {
   if (camera.width == 0 || camera.height == 0)
     fail("refraction reference: the camera has {}x{} pixels", camera.width, camera.height);
   RefractionReference out;
@@ -287,7 +311,7 @@ RefractionReference render_refraction_reference(const ReferenceScene& scene,
   const size_t pixels = size_t(width) * height;
   out.ends.resize(pixels);
   out.paths.resize(pixels);
-  const Tracer tracer(scene, materials, light, environment, full_depth);
+  const Tracer tracer(scene, materials, light, environment, max_interfaces);
 
   // One row per block: neighbouring rays share BVH nodes. Every pixel is computed by one call, so nothing
   // depends on the number of threads.
@@ -308,7 +332,7 @@ RefractionReference render_refraction_reference(const ReferenceScene& scene,
         for (uint32_t x = 0; x < width; ++x) {
           const glm::vec3 dir = camera.ray_direction(float(x) + 0.5f, float(y) + 0.5f);
           out.image.pixels[y * width + x] =
-              glm::vec4(tracer.full(camera.eye, dir, Media{}, 0, 1.0f, true), 1.0f);
+              glm::vec4(tracer.full(camera.eye, dir, Media{}, 0, 1.0f, std::nullopt), 1.0f);
         }
     });
   }

@@ -5,14 +5,18 @@
 //            up to VOXR_PATH_MAX_EVENTS interfaces: the voxel methods' own model, so their difference from it
 //            is their discretisation. Produces the same RefractionPath records the device methods do.
 //   full     reflection and refraction both traced at every dielectric interface with the exact Fresnel
-//            reflectance (voxr_fresnel_exact), to `full_depth` bounces; reflected rays that reach an opaque
-//            surface are shaded there like any other: the difference from it is the model's.
+//            reflectance (voxr_fresnel_exact) until a branch's weight (its largest channel of the
+//            throughput to the pixel) falls below 1e-3, with `max_interfaces` per branch only as a guard
+//            against loops; reflected rays that reach an opaque surface are shaded there like any other: the
+//            difference from it is the model's.
 // Opaque ends are shaded by the one shading model with the exact shadow transmittance
 // (ReferenceScene::transmittance) from the end point (shade_host.h shade_surface_sample).
 // Both: the camera ray's first surface, if opaque or a sheet, is shaded there (the primary sample, as every
-// method); any later ray crosses sheets, times their transmittance. Rays leaving a surface ignore hits
-// nearer than 1e-4 of ReferenceScene::scene_size(). Nested media are tracked as refract_voxel.cl does (a
-// stack of at most 4). The full model cuts branches whose weight (largest channel) is below 1e-3.
+// method); any later ray crosses sheets, times their transmittance. A ray leaving a surface skips the
+// triangle it left (and coincident ones passed at the same point), nothing else
+// (ReferenceScene::intersect_leaving); of coincident surfaces met together an opaque one wins, then the
+// lowest triangle id (ReferenceScene::intersect), so glass standing on a floor ends its rays on the floor.
+// Nested media are tracked as refract_voxel.cl does (a stack of at most 4).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -45,11 +49,13 @@ struct RefractionReference {
 
 // Renders `scene` as `camera` sees it, one ray per pixel centre (camera.ray_direction(x + 0.5, y + 0.5)).
 // `materials` are render_materials() of the scene's (ids as in the ReferenceScene). Primary ray misses
-// show environment.lookup(direction). Throws voxr::Error for an empty camera or a material id out of range.
+// show environment.lookup(direction). max_interfaces: the full model's guard (dielectric interfaces per
+// branch, then the branch is dropped); the matched model stops at VOXR_PATH_MAX_EVENTS. Throws voxr::Error
+// for an empty camera or a material id out of range.
 RefractionReference render_refraction_reference(const ReferenceScene& scene,
                                                 const std::vector<RenderMaterial>& materials,
                                                 const RenderLight& light, const EnvironmentMap& environment,
                                                 const CameraFrame& camera, ReferenceModel model,
-                                                uint32_t full_depth = 6);
+                                                uint32_t max_interfaces = 64);
 
 }  // namespace voxr

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <numeric>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
@@ -92,6 +93,45 @@ bool shares_vertex(const glm::uvec4& a, const glm::uvec4& b) {
   return false;
 }
 
+// One candidate hit of a primary or leaving ray: cast parameter t (along the unit direction), triangle,
+// Embree's (u, v).
+struct RayHit {
+  float t;
+  uint32_t triangle;
+  float u, v;
+};
+
+// The context of ReferenceScene::intersect's casts, Embree's own first so the filter can reach the rest.
+struct NearestContext {
+  RTCIntersectContext embree;
+  const std::vector<glm::uvec4>* triangles;
+  std::span<const uint32_t> leaving;  // skipped at any t
+  float neighbour_t;                  // their vertex-sharing neighbours are skipped at cast t <= this
+  std::vector<RayHit>* window;        // null: accept the rest (nearest); else record and reject every one
+};
+static_assert(std::is_standard_layout_v<NearestContext>);
+
+void skip_left(const RTCFilterFunctionNArguments* args) {
+  const auto* context = reinterpret_cast<const NearestContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const uint32_t triangle = RTCHitN_primID(args->hit, args->N, i);
+    const float t = RTCRayN_tfar(args->ray, args->N, i);
+    bool skip = false;
+    for (uint32_t left : context->leaving) {
+      skip = skip || triangle == left ||
+             (t <= context->neighbour_t &&
+              shares_vertex((*context->triangles)[triangle], (*context->triangles)[left]));
+    }
+    if (!skip && context->window) {
+      context->window->push_back(
+          {t, triangle, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)});
+      skip = true;
+    }
+    if (skip) args->valid[i] = 0;
+  }
+}
+
 uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
@@ -134,6 +174,10 @@ struct ReferenceScene::Impl {
   }
 
   bool crosses(std::span<const uint32_t> faces, const glm::vec3& dir) const;
+  bool nearest(const glm::vec3& origin, const glm::vec3& d, float t_near, float t_far,
+               std::span<const uint32_t> leaving, float neighbour_t, RayHit& out);
+  // The SurfaceSample of `hit` at origin + t d (d unit; distance max(t, 0)).
+  SurfaceSample sample(const glm::vec3& origin, const glm::vec3& d, const RayHit& hit, float t) const;
   ScenePtr build(unsigned mirror);
   RTCScene scene(unsigned mirror) {
     std::call_once(built[mirror], [&] { scenes[mirror] = build(mirror); });
@@ -300,42 +344,64 @@ RTCRayHit embree_ray(const glm::vec3& o, const glm::vec3& e, float t_near, float
 
 }  // namespace
 
-SurfaceSample ReferenceScene::intersect(const glm::vec3& origin, const glm::vec3& dir, float t_near,
-                                        float t_far) const {
-  Impl& m = *impl_;
-  SurfaceSample s{};
-  s.triangle = VOXR_NO_TRIANGLE;
-  const float len = glm::length(dir);
-  if (!(len > 0.0f) || !std::isfinite(len))
-    fail("reference intersect: the ray direction ({}, {}, {}) is zero or not finite", dir.x, dir.y, dir.z);
-  const glm::vec3 d = dir / len;
+// The nearest hit of origin + t d (d unit), t in [t_near, t_far] (cast parameters), skipping as `leaving`
+// and neighbour_t say (NearestContext), with the coincident-hit rule (ReferenceScene::intersect): false on
+// a miss.
+bool ReferenceScene::Impl::nearest(const glm::vec3& origin, const glm::vec3& d, float t_near, float t_far,
+                                   std::span<const uint32_t> leaving, float neighbour_t, RayHit& out) {
+  NearestContext context;
+  rtcInitIntersectContext(&context.embree);
+  context.triangles = &triangles;
+  context.leaving = leaving;
+  context.neighbour_t = neighbour_t;
+  context.window = nullptr;
+  if (!leaving.empty()) context.embree.filter = skip_left;
   // The nearest hit over the casts (the lowest triangle of equally near ones).
-  float best_t = std::numeric_limits<float>::infinity();
-  uint32_t triangle = VOXR_NO_TRIANGLE;
-  float u = 0.0f, v = 0.0f;
-  m.for_each_cast(origin, d, [&](RTCScene scene, const glm::vec3& o, const glm::vec3& e) {
-    RTCRayHit rh = embree_ray(o, e, t_near * len, t_far * len);
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    rtcIntersect1(scene, &context, &rh);
+  out = {std::numeric_limits<float>::infinity(), VOXR_NO_TRIANGLE, 0.0f, 0.0f};
+  for_each_cast(origin, d, [&](RTCScene scene, const glm::vec3& o, const glm::vec3& e) {
+    RTCRayHit rh = embree_ray(o, e, t_near, t_far);
+    rtcIntersect1(scene, &context.embree, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
-    if (rh.ray.tfar < best_t || (rh.ray.tfar == best_t && rh.hit.primID < triangle)) {
-      best_t = rh.ray.tfar;
-      triangle = rh.hit.primID;
-      u = rh.hit.u;
-      v = rh.hit.v;
-    }
+    if (rh.ray.tfar < out.t || (rh.ray.tfar == out.t && rh.hit.primID < out.triangle))
+      out = {rh.ray.tfar, rh.hit.primID, rh.hit.u, rh.hit.v};
   });
-  if (triangle == VOXR_NO_TRIANGLE) return s;
+  if (out.triangle == VOXR_NO_TRIANGLE) return false;
+  // An opaque nearest hit wins (of coincident opaque ones the nearer, then the lower id: deterministic, and
+  // either ends the ray). Otherwise every hit within the merge distance beyond it: the one that wins is
+  // opaque if any is, then one the ray enters (its winding faces the ray: glass to water at a shared face is
+  // one interface, not glass to air to water), then the lowest triangle id; t itself (which rounding orders)
+  // has no say.
+  if (materials[triangles[out.triangle].w].kind == MaterialKind::kOpaque) return true;
+  std::vector<RayHit> window;
+  context.embree.filter = skip_left;
+  context.window = &window;
+  const float merge = kMergeDistance * size;
+  for_each_cast(origin, d, [&](RTCScene scene, const glm::vec3& o, const glm::vec3& e) {
+    RTCRayHit rh = embree_ray(o, e, std::max(t_near, out.t - merge), std::min(t_far, out.t + merge));
+    rtcIntersect1(scene, &context.embree, &rh);
+  });
+  const auto rank = [&](const RayHit& h) {
+    return std::tuple(materials[triangles[h.triangle].w].kind == MaterialKind::kOpaque ? 0 : 1,
+                      glm::dot(face_normal(h.triangle), d) < 0.0f ? 0 : 1, h.triangle);
+  };
+  const float t0 = out.t;
+  for (const RayHit& h : window)
+    if (h.t <= t0 + merge && rank(h) < rank(out)) out = h;
+  return true;
+}
 
-  const glm::uvec4& t = m.triangles[triangle];
-  const glm::vec3 position = origin + best_t * d;
-  glm::vec3 geometric = m.face_normal(triangle);
+SurfaceSample ReferenceScene::Impl::sample(const glm::vec3& origin, const glm::vec3& d, const RayHit& hit,
+                                           float t_hit) const {
+  SurfaceSample s{};
+  const glm::uvec4& t = triangles[hit.triangle];
+  const glm::vec3 position = origin + t_hit * d;
+  glm::vec3 geometric = face_normal(hit.triangle);
   // The crease rule per corner (voxr_layout.h VOXR_CREASE_COS), as the rasterizer's resolve applies it.
   const auto corner = [&](uint32_t vertex) {
-    const glm::vec3 n = m.normals[vertex];
+    const glm::vec3 n = normals[vertex];
     return glm::dot(n, geometric) >= VOXR_CREASE_COS ? n : geometric;
   };
+  const float u = hit.u, v = hit.v;
   glm::vec3 shading = (1.0f - u - v) * corner(t.x) + u * corner(t.y) + v * corner(t.z);
   const float shading_len = glm::length(shading);
   shading = shading_len > 0.0f ? shading / shading_len : glm::vec3(0.0f);
@@ -354,12 +420,58 @@ SurfaceSample ReferenceScene::intersect(const glm::vec3& origin, const glm::vec3
     s.normal[c] = shading[c];
     s.geometric_normal[c] = geometric[c];
   }
-  s.triangle = triangle;
+  s.triangle = hit.triangle;
   s.material = t.w;
-  s.distance = best_t;
+  s.distance = std::max(t_hit, 0.0f);
   s.barycentric[0] = u;
   s.barycentric[1] = v;
   return s;
+}
+
+namespace {
+
+SurfaceSample no_hit() {
+  SurfaceSample s{};
+  s.triangle = VOXR_NO_TRIANGLE;
+  return s;
+}
+
+// dir / |dir|, or voxr::Error for a zero or non-finite dir.
+glm::vec3 unit_direction(const glm::vec3& dir, float& len) {
+  len = glm::length(dir);
+  if (!(len > 0.0f) || !std::isfinite(len))
+    fail("reference intersect: the ray direction ({}, {}, {}) is zero or not finite", dir.x, dir.y, dir.z);
+  return dir / len;
+}
+
+}  // namespace
+
+SurfaceSample ReferenceScene::intersect(const glm::vec3& origin, const glm::vec3& dir, float t_near,
+                                        float t_far) const {
+  float len = 0.0f;
+  const glm::vec3 d = unit_direction(dir, len);
+  RayHit hit;
+  if (!impl_->nearest(origin, d, t_near * len, t_far * len, {}, 0.0f, hit)) return no_hit();
+  return impl_->sample(origin, d, hit, hit.t);
+}
+
+SurfaceSample ReferenceScene::intersect_leaving(const glm::vec3& origin, const glm::vec3& dir,
+                                                std::span<const uint32_t> leaving) const {
+  Impl& m = *impl_;
+  if (leaving.empty() || leaving.size() > 8)
+    fail("reference intersect: a ray leaves {} triangles (1 to 8)", leaving.size());
+  for (uint32_t left : leaving)
+    if (left >= m.triangles.size())
+      fail("reference intersect: the ray leaves triangle {} but there are {}", left, m.triangles.size());
+  float len = 0.0f;
+  const glm::vec3 d = unit_direction(dir, len);
+  // Cast from `back` behind the origin, so a surface through the origin is met at cast t ~ back.
+  const float back = kMergeDistance * m.size;
+  const glm::vec3 start = origin - back * d;
+  RayHit hit;
+  if (!m.nearest(start, d, 0.0f, std::numeric_limits<float>::infinity(), leaving, 2.0f * back, hit))
+    return no_hit();
+  return m.sample(origin, d, hit, hit.t - back);
 }
 
 glm::vec3 ReferenceScene::transmittance(const RenderLight& light, const glm::vec3& point,

@@ -40,6 +40,12 @@ class ReferenceScene {
   // The nearest hit of the ray origin + t * dir, t in (t_near, t_far), as a SurfaceSample (triangle =
   // VOXR_NO_TRIANGLE on a miss; normals unit and turned towards the origin; shading normal interpolated from
   // angle-weighted vertex normals, as the rasterizer's resolve does).
+  // Coincident hits: of the hits less than kMergeDistance * scene_size() beyond the nearest (coplanar
+  // surfaces, e.g. a glass face standing on a floor, which float rounding orders either way), an opaque one
+  // wins over a sheet or a dielectric (an opaque nearest hit wins outright: of coincident opaque ones the
+  // nearer, then the lower id); among sheets and dielectrics one the ray enters (its winding's normal faces
+  // the ray) wins over one it leaves, so two solids sharing a face are one interface, then the lowest
+  // triangle id: the result does not depend on BVH order, rounding's choice or the thread count.
   // Embree traces the normalized direction: position = origin + t * dir as Embree found it, distance =
   // t * |dir| (world units); barycentric = Embree's (u, v), the weights of vertices 1 and 2. Shading normal:
   // render/vertex_normals.h interpolated with (1 - u - v, u, v) and normalized; where it deviates from the
@@ -50,12 +56,28 @@ class ReferenceScene {
   SurfaceSample intersect(const glm::vec3& origin, const glm::vec3& dir, float t_near = 0.0f,
                           float t_far = 3.0e38f) const;
 
+  // The nearest hit of a ray leaving the surface point `origin` (found by intersect on the triangles
+  // `leaving`: the one it left, and any coincident ones it passed at the same point; 1 to 8 ids): the
+  // triangles in `leaving` are skipped at any t (a ray leaving a plane does not meet it again), and so are,
+  // within kMergeDistance * scene_size() of the origin, triangles that share a vertex index with one of them
+  // (the same surface at a shared edge or vertex, which the rounded origin may lie a hair beyond). Nothing
+  // else is skipped: every other surface counts from kMergeDistance * scene_size() behind the origin, so a
+  // coplanar one (a floor under a glass face) is met at distance ~0 whichever side of it rounding put the
+  // origin; the coincident-hit rule of intersect applies. distance is clamped to >= 0, position is
+  // origin + t * normalize(dir) with the signed t. The tolerance is the shadow rays' merge distance: 100x
+  // the rounding of a hit point (a few float ulps of the scene's size), far below any modelled thickness.
+  // Throws voxr::Error for a zero or non-finite dir, an empty `leaving` or more than 8 ids.
+  SurfaceSample intersect_leaving(const glm::vec3& origin, const glm::vec3& dir,
+                                  std::span<const uint32_t> leaving) const;
+
   // Hits nearer than kStartEpsilon * scene_size() along a shadow ray are ignored (with those on `self`): a
   // surface point computed by a primary ray lies off its plane by rounding, and would otherwise see its own
   // or a neighbouring coplanar triangle. A surface closer than that to the receiver casts no shadow on it.
   static constexpr float kStartEpsilon = 1e-5f;
   // Hits less than kMergeDistance * scene_size() apart along a shadow ray, on triangles that share a vertex
-  // index, are one meeting of the ray with one surface (at a shared edge or vertex).
+  // index, are one meeting of the ray with one surface (at a shared edge or vertex). The same tolerance says
+  // which hits are coincident (intersect) and how near its origin a leaving ray skips the surface it left
+  // (intersect_leaving).
   static constexpr float kMergeDistance = 1e-5f;
 
   // RGB transmittance from `point` (on triangle `self`, VOXR_NO_TRIANGLE for none) to the light, along the

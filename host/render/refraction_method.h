@@ -38,7 +38,8 @@ inline constexpr std::array<RefractionMethodInfo, 7> kRefractionMethods = {{
     {RefractionMethod::kReference, "reference",
      "exact, matched: Embree Whitted tracing of the refracted path with the voxel methods' model"},
     {RefractionMethod::kReferenceFull, "reference-full",
-     "exact, full: Embree Whitted tracing of reflection and refraction at every interface, exact Fresnel"},
+     "exact, full: Embree Whitted tracing of reflection and refraction at every interface, exact Fresnel, "
+     "each branch until its weight falls below 1e-3"},
     {RefractionMethod::kNone, "none", "no refraction: dielectrics shaded flat"},
 }};
 

@@ -363,8 +363,9 @@ constexpr std::string_view kBallFigureScene = R"({
 })";
 
 // Two glass blocks of different index (1.5 and 1.8) 0.002 apart, far under a voxel: their boundary voxels
-// hold both materials. Not quite touching: at coincident faces the reference would drop one of the two
-// interfaces (it ignores hits within 1e-4 of the scene's size), so it crosses a thin air film instead.
+// hold both materials. Not quite touching, as first measured (when the reference skipped 1e-4 of the
+// scene's size after every surface and so crossed coincident faces as a film of air; it now takes them as
+// one glass-flint interface, reference_scene.h).
 constexpr std::string_view kTouchingScene = R"({
   "materials": [
     {"name": "glass", "kind": "dielectric", "ior": 1.5, "absorption": [0.1, 0.1, 0.1]},
