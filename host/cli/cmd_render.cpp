@@ -69,6 +69,7 @@ struct RenderArgs {
   std::string refraction = "voxel-multi";
   uint32_t res = 256;
   std::string refraction_grid = "fitted";
+  uint32_t coarse_res = 0;
   std::string step = "papers";
   std::string normals = "smooth";
   float angle_threshold = 60.0f;
@@ -107,6 +108,7 @@ RenderOptions render_options(const RenderArgs& args) {
   options.refraction.method = parse_refraction_method(args.refraction);
   options.refraction.resolution = args.res;
   options.refraction.grid = parse_refraction_grid(args.refraction_grid);
+  options.refraction.coarse_resolution = args.coarse_res;
   options.refraction.step = parse_step_rule(args.step);
   options.refraction.normals = parse_normal_kind(args.normals);
   options.refraction.angle_threshold_deg = args.angle_threshold;
@@ -526,6 +528,12 @@ Command add_render(CLI::App& app) {
     refraction_grids +=
         fmt::format("{}{} ({})", refraction_grids.empty() ? "" : "; ", info.name, info.summary);
   sub->add_option("--refraction-grid", args->refraction_grid, "voxel refraction's grids: " + refraction_grids)
+      ->capture_default_str();
+  sub->add_option(
+         "--coarse-res", args->coarse_res,
+         "--refraction-grid fitted: voxels along the coarse grid's longest side (the whole scene); 0: "
+         "--res/2")
+      ->check(CLI::Range(0u, kRefractionResMax))
       ->capture_default_str();
   sub->add_option(
          "--step", args->step,

@@ -79,7 +79,8 @@ VoxelRefraction::Levels VoxelRefraction::grids(const RefractionOptions& options)
   all.extend(out.fine.origin);
   all.extend(out.fine.origin + glm::vec3(out.fine.dims) * out.fine.voxel_size);
   GridRequest coarse;
-  coarse.resolution = std::max(2u, options.resolution / kCoarseDivisor);
+  coarse.resolution = options.coarse_resolution != 0 ? options.coarse_resolution
+                                                     : std::max(2u, options.resolution / kCoarseDivisor);
   out.coarse = fit_grid(all, coarse, soup_->anchor);
   return out;
 }

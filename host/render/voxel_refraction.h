@@ -3,7 +3,7 @@
 // precomputed) on two levels (RefractionGrid::kFitted): a fine grid over the dielectric triangles' bounds
 // with kFineMarginVoxels around them, options.resolution voxels along its longest side, into which every
 // scene triangle that meets it is voxelized; and a coarse grid over the whole scene (and the fine box),
-// resolution / kCoarseDivisor voxels along its longest side, that the march goes on in after leaving the
+// options.coarse_resolution voxels along its longest side, that the march goes on in after leaving the
 // fine box (straight on: every dielectric lies in the fine box, so the coarse level has no refraction
 // events and a path never comes back). RefractionGrid::kScene (the papers): one grid over the whole scene,
 // options.resolution along its longest side. Then per pixel that sees a dielectric (kernels/
@@ -53,10 +53,8 @@ class VoxelRefraction {
   // Builds (or loads) the voxelizer's and the march's programs.
   void prepare(const RefractionOptions& options);
 
-  // Fine grid margin around the dielectrics' bounds, in fine voxels; the coarse grid's resolution is the
-  // fine one's divided by kCoarseDivisor (at least 2).
+  // Fine grid margin around the dielectrics' bounds, in fine voxels.
   static constexpr float kFineMarginVoxels = 2.0f;
-  static constexpr uint32_t kCoarseDivisor = 4;
 
   // The scene of the next frames (anchor-relative; must stay alive and unchanged until the next set_scene);
   // `materials` are its materials (triangle material ids index them; the dielectrics' bounds come from
