@@ -1,6 +1,7 @@
 // Voxel refraction's grids (render/voxel_refraction.h, RefractionGrid): the fitted fine grid and the coarse
-// grid's dimensions and voxel sizes on a known scene (exact), the whole scene's grid with kScene, and a path
-// that leaves the fine grid's box going on in the coarse level to the opaque object beyond it.
+// grid's dimensions and voxel sizes on a known scene (exact), the whole scene's grid with kScene, a path
+// that leaves the fine grid's box going on in the coarse level to the opaque object beyond it, and an opaque
+// surface coincident with glass winning the voxels they share whatever the materials' order.
 #include <gtest/gtest.h>
 
 #include <glm/glm.hpp>
@@ -131,6 +132,37 @@ TEST(RefractionGrid, PathLeavingTheFineBoxMeetsTheWallOnTheCoarseLevel) {
   EXPECT_GE(end.position[2], -2.5f - 1e-4f);
   EXPECT_LE(end.position[2], -2.5f + 2.0f * h);
   EXPECT_NEAR(end.position[0], 0.0f, 1e-4f);
+}
+
+TEST(RefractionGrid, OpaqueSurfaceCoincidentWithGlassWinsTheSharedVoxels) {
+  // The floor listed before the glass: by index alone (the voxelizer's atomic max) the glass would win the
+  // voxels where its bottom lies on the floor's top (their normal sums, down and up, cancel), the march
+  // would pass them and end on the floor slab's underside, 0.05 down.
+  const std::vector<Material> glass_and_floor = materials();
+  const std::vector<Material> floor_first = {glass_and_floor[kOpaque], glass_and_floor[kGlass]};
+  TriangleSoup soup;
+  soup.append(make_box(glm::vec3(-0.5f, 0.0f, -0.5f), glm::vec3(0.5f, 1.0f, 0.5f)), glm::mat4(1.0f), 1u);
+  soup.append(make_box(glm::vec3(-2.0f, -0.05f, -2.0f), glm::vec3(2.0f, 0.0f, 2.0f)), glm::mat4(1.0f), 0u);
+  FrameRenderer renderer(test::runtime());
+  renderer.set_scene(soup, floor_first);
+  CameraFrame down = camera();
+  down.eye = glm::vec3(0.0f, 3.0f, 0.0f);
+  down.forward = glm::vec3(0.0f, -1.0f, 0.0f);
+  down.up = glm::vec3(0.0f, 0.0f, -1.0f);
+  for (RefractionGrid grid : {RefractionGrid::kFitted, RefractionGrid::kScene}) {
+    SCOPED_TRACE(refraction_grid_info(grid).name);
+    const RenderOptions o = options(grid, 64);
+    renderer.prepare(o);
+    FrameStats stats;
+    const RenderedFrame frame = renderer.render(light(), down, o, &stats);
+    const size_t centre = size_t(down.height / 2) * down.width + down.width / 2;
+    // The front surface, then the floor's voxel at the glass's bottom: one event, the path ends on the floor
+    // within a voxel of y = 0.
+    EXPECT_EQ(frame.paths[centre].events & VOXR_PATH_EVENTS_MASK, 1u);
+    EXPECT_EQ(frame.samples[centre].triangle, VOXR_VOXEL_HIT);
+    EXPECT_EQ(frame.samples[centre].material, 0u);
+    EXPECT_NEAR(frame.samples[centre].position[1], 0.0f, stats.refraction_grid.voxel_size);
+  }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "grid/channel_table.h"
 #include "render/visibility_rasterizer.h"
@@ -48,17 +49,43 @@ void VoxelRefraction::prepare(const RefractionOptions&) {
 
 void VoxelRefraction::set_scene(const TriangleSoup& soup, const DeviceMesh& scene_mesh,
                                 const std::vector<Material>& materials) {
-  soup_ = &soup;
-  scene_mesh_ = &scene_mesh;
+  for (Level* level : {&fine_, &coarse_}) {
+    level->mesh.reset();
+    level->voxelized = nullptr;
+  }
+  // Material ranks by kind: the voxelizer's atomic max then keeps opaque over sheet over dielectric.
+  const auto priority = [](MaterialKind k) {
+    return k == MaterialKind::kDielectric ? 0 : k == MaterialKind::kSheet ? 1 : 2;
+  };
+  std::vector<uint32_t> material_of(std::max<size_t>(1, materials.size()));
+  std::iota(material_of.begin(), material_of.end(), 0u);
+  std::stable_sort(material_of.begin(), material_of.begin() + materials.size(), [&](uint32_t a, uint32_t b) {
+    return priority(materials[a].kind) < priority(materials[b].kind);
+  });
+  std::vector<uint32_t> rank(material_of.size());
+  for (uint32_t r = 0; r < material_of.size(); ++r) rank[material_of[r]] = r;
+  const bool identity = std::is_sorted(material_of.begin(), material_of.end());
+  ranked_mesh_.reset();
+  ranked_soup_ = TriangleSoup{};
+  if (identity) {
+    soup_ = &soup;
+    scene_mesh_ = &scene_mesh;
+  } else {
+    ranked_soup_ = soup;
+    for (glm::uvec4& t : ranked_soup_.triangles)
+      if (t.w < rank.size()) t.w = rank[t.w];
+    const Bounds bounds = scene_mesh.bounds();
+    ranked_mesh_ = std::make_unique<DeviceMesh>(cl_, ranked_soup_, &bounds);
+    soup_ = &ranked_soup_;
+    scene_mesh_ = ranked_mesh_.get();
+  }
+  cl::Buffer& order = material_of_.ensure(cl_, material_of.size() * 4, "refraction material order");
+  cl_.upload(order, material_of.data(), material_of.size() * 4, "refraction material order");
   bounds_ = scene_mesh.bounds();
   dielectric_bounds_ = Bounds{};
   for (const glm::uvec4& t : soup.triangles)
     if (t.w < materials.size() && materials[t.w].kind == MaterialKind::kDielectric)
       for (int c = 0; c < 3; ++c) dielectric_bounds_.extend(glm::vec3(soup.positions[t[c]]));
-  for (Level* level : {&fine_, &coarse_}) {
-    level->mesh.reset();
-    level->voxelized = nullptr;
-  }
 }
 
 VoxelRefraction::Levels VoxelRefraction::grids(const RefractionOptions& options) const {
@@ -145,8 +172,8 @@ void VoxelRefraction::trace(const CameraFrame& camera, const cl::Buffer& primary
   Level& coarse = coarse_present_ ? coarse_ : fine_;
   cl_.launch("refraction", kernel, dielectric.pixel_count(), kGroup, fine_.grid.view_args(cl_),
              coarse.grid.view_args(cl_), make_render_camera(camera), primary_samples, dielectric, materials,
-             cl_uint(material_count), params(options), fine_.bricks.buffer, coarse.bricks.buffer, end_samples,
-             paths);
+             cl_uint(material_count), params(options), fine_.bricks.buffer, coarse.bricks.buffer,
+             material_of_.buffer, end_samples, paths);
 }
 
 }  // namespace voxr

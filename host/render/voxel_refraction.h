@@ -21,8 +21,10 @@
 // empty VOXR_BRICK^3 bricks (a bit grid built after voxelizing), which the papers do not. An opaque
 // voxel ends the path with a VOXR_VOXEL_HIT sample (voxel entry point, voxel normal turned to the ray, the
 // voxel's material) that the shadow lookup and shading treat like any surface. Where surfaces of several
-// materials share a voxel the voxelizer keeps the highest material index (atomic max), whatever the kinds.
-// The path model is kernels/refraction.h's.
+// materials share a voxel the voxelizer keeps the highest material id (atomic max): the levels are voxelized
+// with each material's rank by kind (dielectrics, then sheets, then opaque; by index within a kind) as its
+// id, so an opaque surface coincident with glass wins (issue 19), and the march maps ranks back to
+// materials. The path model is kernels/refraction.h's.
 #pragma once
 
 #include <memory>
@@ -107,7 +109,12 @@ class VoxelRefraction {
   const TriangleSoup* soup_ = nullptr;
   Bounds bounds_;                           // the scene's, taken once by set_scene
   Bounds dielectric_bounds_;                // its dielectric triangles' (empty: none)
-  const DeviceMesh* scene_mesh_ = nullptr;  // the scene's own device mesh, shared
+  const DeviceMesh* scene_mesh_ = nullptr;  // the scene's own device mesh, shared, or ranked_mesh_
+  // When the scene's material order is not already by kind: its soup with ids replaced by ranks, on the
+  // device; otherwise empty and the scene's own soup and mesh are voxelized.
+  TriangleSoup ranked_soup_;
+  std::unique_ptr<DeviceMesh> ranked_mesh_;
+  GrowingBuffer material_of_;  // uint per rank: the material index
 
   void build_level(Level& level, const GridSpec& spec);
   VoxelRefractParams params(const RefractionOptions& options) const;

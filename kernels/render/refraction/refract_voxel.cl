@@ -18,8 +18,9 @@
 
 #define MAX_MEDIA 4 /* nested dielectrics tracked */
 
-/* The voxel's unit normal, or the normals of its 3x3x3 neighbours of the same material weighted by how
- * close their centres are to q (smooth); zero where the writers' normals cancel. */
+/* The voxel's unit normal, or the normals of its 3x3x3 neighbours of the same material (channel value
+ * `material`) weighted by how close their centres are to q (smooth); zero where the writers' normals cancel.
+ */
 inline float3 boundary_normal(const GridView* g, int i, int j, int k, uint rank, uint material, float3 q,
                               uint smooth) {
   if (!smooth) return gv_normal(g, rank);
@@ -237,8 +238,8 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
     VOXR_GRID_VIEW_PARAMS, VOXR_GRID_VIEW_PARAMS_NAMED(coarse), RenderCamera cam,
     __global const SurfaceSample* primary, __global const uint* pixel_list, __global const uint* pixel_count,
     __global const RenderMaterial* materials, uint material_count, VoxelRefractParams p,
-    __global const uint* fine_bricks, __global const uint* coarse_bricks, __global SurfaceSample* ends,
-    __global RefractionPath* paths) {
+    __global const uint* fine_bricks, __global const uint* coarse_bricks, __global const uint* material_of,
+    __global SurfaceSample* ends, __global RefractionPath* paths) {
   uint id;
   if (!rp_listed_pixel(pixel_list, pixel_count, get_global_id(0), &id)) return;
   const Level fine = level_make(VOXR_GRID_VIEW(), &p.fine, fine_bricks);
@@ -311,11 +312,14 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
       continue;
     }
     const uint rank = gv_rank(&l->g, v);
-    const uint mat = min(gv_material(&l->g, rank), material_count - 1u);
+    /* The material channel holds the priority rank the host voxelized (voxel_refraction.h): back to the
+     * scene's material index. */
+    const uint stored = min(gv_material(&l->g, rank), material_count - 1u);
+    const uint mat = material_of[stored];
     const RenderMaterial mm = materials[mat];
     if (mm.kind == VOXR_MATERIAL_OPAQUE) {
       absorb_segment(&throughput, materials, media, depth, last, here, l->voxel_size);
-      float3 n = boundary_normal(&l->g, m.i, m.j, m.k, rank, mat, here, p.smooth_normals);
+      float3 n = boundary_normal(&l->g, m.i, m.j, m.k, rank, stored, here, p.smooth_normals);
       if (dot(n, n) < 1e-12f) n = -dir;
       if (dot(n, dir) > 0.0f) n = -n;
       /* Where the ray entered the voxel (the papers' sample point may lie inside the opaque object). */
@@ -345,7 +349,8 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
      * the angle threshold (PG 2011): then it is the next surface, e.g. the far side of a thin part. */
     const int near_last = in_run || length(here - last) < 2.0f;
     if (near_last && run_material == mat && dot(n_voxel, prev_normal) > p.cos_threshold) continue;
-    const float3 n = p.smooth_normals ? boundary_normal(&l->g, m.i, m.j, m.k, rank, mat, here, 1u) : n_voxel;
+    const float3 n =
+        p.smooth_normals ? boundary_normal(&l->g, m.i, m.j, m.k, rank, stored, here, 1u) : n_voxel;
     absorb_segment(&throughput, materials, media, depth, last, here, l->voxel_size);
     last = here;
     const int inside = rp_medium_index(media, depth, mat);
