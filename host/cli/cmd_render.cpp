@@ -68,6 +68,8 @@ struct RenderArgs {
   float normal_offset = kDefaultNormalOffset;
   std::string refraction = "voxel-multi";
   uint32_t res = 256;
+  std::string refraction_grid = "fitted";
+  uint32_t coarse_res = 0;
   std::string step = "papers";
   std::string normals = "smooth";
   float angle_threshold = 60.0f;
@@ -105,6 +107,8 @@ RenderOptions render_options(const RenderArgs& args) {
   options.normal_offset = args.normal_offset;
   options.refraction.method = parse_refraction_method(args.refraction);
   options.refraction.resolution = args.res;
+  options.refraction.grid = parse_refraction_grid(args.refraction_grid);
+  options.refraction.coarse_resolution = args.coarse_res;
   options.refraction.step = parse_step_rule(args.step);
   options.refraction.normals = parse_normal_kind(args.normals);
   options.refraction.angle_threshold_deg = args.angle_threshold;
@@ -519,6 +523,18 @@ Command add_render(CLI::App& app) {
     refractions += fmt::format("{}{} ({})", refractions.empty() ? "" : "; ", info.name, info.summary);
   sub->add_option("--refraction", args->refraction, refractions)->capture_default_str();
   add_grid_option(*sub, "--res", GridKind::kRefraction, args->res)->capture_default_str();
+  std::string refraction_grids;
+  for (const RefractionGridInfo& info : kRefractionGrids)
+    refraction_grids +=
+        fmt::format("{}{} ({})", refraction_grids.empty() ? "" : "; ", info.name, info.summary);
+  sub->add_option("--refraction-grid", args->refraction_grid, "voxel refraction's grids: " + refraction_grids)
+      ->capture_default_str();
+  sub->add_option(
+         "--coarse-res", args->coarse_res,
+         "--refraction-grid fitted: voxels along the coarse grid's longest side (the whole scene); 0: "
+         "--res/2")
+      ->check(CLI::Range(0u, kRefractionResMax))
+      ->capture_default_str();
   sub->add_option(
          "--step", args->step,
          "voxel refraction's march: papers (fixed step h / cos theta along the dominant axis) or dda "

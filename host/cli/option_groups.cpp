@@ -23,7 +23,8 @@ GridKindInfo grid_kind_info(GridKind kind) {
               "of the light's grid, and as many slabs"};
     case GridKind::kRefraction:
       return {kRefractionResMin, kRefractionResMax,
-              "voxel refraction grid: voxels along the scene's longest side"};
+              "voxel refraction grid: voxels along the longest side of the fine grid (--refraction-grid "
+              "fitted: the dielectrics and 2 voxels of margin; scene: the whole scene)"};
   }
   throw InternalError("unknown GridKind");
 }

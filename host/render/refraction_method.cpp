@@ -11,6 +11,9 @@ const StepRuleInfo& step_rule_info(StepRule rule) {
 const NormalKindInfo& normal_kind_info(NormalKind kind) {
   return named_entry(kNormalKinds, kind);
 }
+const RefractionGridInfo& refraction_grid_info(RefractionGrid grid) {
+  return named_entry(kRefractionGrids, grid);
+}
 RefractionMethod parse_refraction_method(std::string_view name) {
   return parse_named(kRefractionMethods, name, "refraction method");
 }
@@ -19,6 +22,9 @@ StepRule parse_step_rule(std::string_view name) {
 }
 NormalKind parse_normal_kind(std::string_view name) {
   return parse_named(kNormalKinds, name, "normal kind");
+}
+RefractionGrid parse_refraction_grid(std::string_view name) {
+  return parse_named(kRefractionGrids, name, "refraction grid");
 }
 
 }  // namespace voxr

@@ -20,6 +20,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,7 +61,9 @@ struct FrameStats {
   uint64_t host_syncs = 0;                 // waits for the device queue inside render() (ClRuntime::syncs)
   uint64_t device_bytes = 0;               // the shadow technique's grid or maps
   uint64_t light_triangles = 0;            // triangles voxelized or rasterized from the light
-  GridSpec refraction_grid;                // voxel refraction: the scene's grid
+  GridSpec refraction_grid;                // voxel refraction: the fine grid (or the whole scene's)
+  std::optional<GridSpec> refraction_coarse_grid;  // voxel refraction's coarse grid, when it has one
+  uint64_t refraction_coarse_bytes = 0;            // of refraction_bytes, the coarse grid's
   uint64_t refraction_bytes = 0;    // the refraction technique's structure: the voxel grid's channels, the
                                     // image-space buffers or the distance-map layers
   uint64_t capacity_rerenders = 0;  // tries render() made again: a count outgrew the capacity kept for it

@@ -1,6 +1,12 @@
 // Refraction through the voxels (Chang & Lai, TR 1688 §5 two-surface refraction; Chang et al., PG 2011 §5
-// multiple refraction): the scene voxelized every frame on a grid fitted to its bounds with the normal-sum
-// and material channels (nothing precomputed), then per pixel that sees a dielectric (kernels/
+// multiple refraction): the scene voxelized every frame with the normal-sum and material channels (nothing
+// precomputed) on two levels (RefractionGrid::kFitted): a fine grid over the dielectric triangles' bounds
+// with kFineMarginVoxels around them, options.resolution voxels along its longest side, into which every
+// scene triangle that meets it is voxelized; and a coarse grid over the whole scene (and the fine box),
+// options.coarse_resolution voxels along its longest side, that the march goes on in after leaving the
+// fine box (straight on: every dielectric lies in the fine box, so the coarse level has no refraction
+// events and a path never comes back). RefractionGrid::kScene (the papers): one grid over the whole scene,
+// options.resolution along its longest side. Then per pixel that sees a dielectric (kernels/
 // refract_voxel.cl):
 //   voxel-two    refract at the exact front surface (the visibility buffer's sample, interpolated normal),
 //                march the grid to the back surface of that dielectric, refract out with the boundary
@@ -14,14 +20,20 @@
 // Step rules: the papers' (one voxel along the dominant axis, length h / cos theta) or the 3-D DDA; both skip
 // empty VOXR_BRICK^3 bricks (a bit grid built after voxelizing), which the papers do not. An opaque
 // voxel ends the path with a VOXR_VOXEL_HIT sample (voxel entry point, voxel normal turned to the ray, the
-// voxel's material) that the shadow lookup and shading treat like any surface. The path model is
-// kernels/refraction.h's.
+// voxel's material) that the shadow lookup and shading treat like any surface. Where surfaces of several
+// materials share a voxel the voxelizer keeps the highest material id (atomic max): the levels are voxelized
+// with each material's rank by kind (dielectrics, then sheets, then opaque; by index within a kind) as its
+// id, so an opaque surface coincident with glass wins (issue 19), and the march maps ranks back to
+// materials. The path model is kernels/refraction.h's.
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "cl/cl_runtime.h"
 #include "cl/scratch_buffers.h"
+#include "core/material.h"
 #include "core/triangle_soup.h"
 #include "grid/device_voxel_grid.h"
 #include "render/camera_frame.h"
@@ -43,13 +55,27 @@ class VoxelRefraction {
   // Builds (or loads) the voxelizer's and the march's programs.
   void prepare(const RefractionOptions& options);
 
-  // The scene of the next frames (anchor-relative; must stay alive and unchanged until the next set_scene).
-  // `scene_mesh` is the soup already on the device (it must stay alive as long): voxelized as it is unless
-  // the grid needs triangles split, so the scene has one device copy.
-  void set_scene(const TriangleSoup& soup, const DeviceMesh& scene_mesh);
+  // Fine grid margin around the dielectrics' bounds, in fine voxels.
+  static constexpr float kFineMarginVoxels = 2.0f;
 
-  // Voxelizes the scene on a grid of options.resolution voxels along its longest side (occupancy, normal
-  // sum, material), on the device. Throws voxr::Error when no scene was set or the grid does not fit.
+  // The scene of the next frames (anchor-relative; must stay alive and unchanged until the next set_scene);
+  // `materials` are its materials (triangle material ids index them; the dielectrics' bounds come from
+  // them). `scene_mesh` is the soup already on the device (it must stay alive as long): voxelized as it is
+  // unless a grid needs triangles split, so the scene has one device copy.
+  void set_scene(const TriangleSoup& soup, const DeviceMesh& scene_mesh,
+                 const std::vector<Material>& materials);
+
+  // The grids options.grid asks for on this scene (anchor-relative): the fine level and, for kFitted on a
+  // scene with dielectric triangles, the coarse one (else nullopt: the fine level is the whole scene's
+  // grid). Throws voxr::Error when no scene was set or a grid does not fit.
+  struct Levels {
+    GridSpec fine;
+    std::optional<GridSpec> coarse;
+  };
+  Levels grids(const RefractionOptions& options) const;
+
+  // Voxelizes the scene on grids(options) (occupancy, normal sum, material), on the device. Throws
+  // voxr::Error when no scene was set or a grid does not fit.
   void build(const RefractionOptions& options);
 
   // Per pixel of `camera` that `dielectric` lists (found from `primary_samples`): its end SurfaceSample and
@@ -59,21 +85,38 @@ class VoxelRefraction {
              const cl::Buffer& materials, uint32_t material_count, const RefractionOptions& options,
              cl::Buffer& end_samples, cl::Buffer& paths);
 
-  const DeviceVoxelGrid& grid() const { return grid_; }
+  // The last build's fine level, and its coarse level (null when it had none).
+  const DeviceVoxelGrid& grid() const { return fine_.grid; }
+  const DeviceVoxelGrid* coarse_grid() const { return coarse_present_ ? &coarse_.grid : nullptr; }
+  // Device bytes of both levels' grids.
+  uint64_t device_bytes() const;
 
  private:
+  // One level: its grid, the mesh voxelized into it and its empty-space bricks.
+  struct Level {
+    DeviceVoxelGrid grid;
+    std::unique_ptr<DeviceMesh> mesh;       // split for mesh_grid, when the grid needs triangles split
+    const DeviceMesh* voxelized = nullptr;  // mesh or the scene's mesh
+    GridSpec mesh_grid;                     // the grid `voxelized` was chosen for
+    GrowingBuffer bricks;                   // one bit per VOXR_BRICK^3 voxels: empty space the march skips
+    glm::uvec3 brick_dims{0};
+  };
+
   ClRuntime& cl_;
   Voxelizer& voxelizer_;
-  DeviceVoxelGrid grid_;
+  Level fine_, coarse_;
+  bool coarse_present_ = false;
   const TriangleSoup* soup_ = nullptr;
   Bounds bounds_;                           // the scene's, taken once by set_scene
-  const DeviceMesh* scene_mesh_ = nullptr;  // the scene's own device mesh, shared
-  std::unique_ptr<DeviceMesh> mesh_;        // split for mesh_grid_, when the grid needs triangles split
-  const DeviceMesh* voxelized_ = nullptr;   // mesh_ or scene_mesh_
-  GridSpec mesh_grid_;                      // the grid voxelized_ was chosen for
-  GrowingBuffer bricks_;                    // one bit per VOXR_BRICK^3 voxels: empty space the march skips
-  glm::uvec3 brick_dims_{0};
+  Bounds dielectric_bounds_;                // its dielectric triangles' (empty: none)
+  const DeviceMesh* scene_mesh_ = nullptr;  // the scene's own device mesh, shared, or ranked_mesh_
+  // When the scene's material order is not already by kind: its soup with ids replaced by ranks, on the
+  // device; otherwise empty and the scene's own soup and mesh are voxelized.
+  TriangleSoup ranked_soup_;
+  std::unique_ptr<DeviceMesh> ranked_mesh_;
+  GrowingBuffer material_of_;  // uint per rank: the material index
 
+  void build_level(Level& level, const GridSpec& spec);
   VoxelRefractParams params(const RefractionOptions& options) const;
 };
 

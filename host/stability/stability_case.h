@@ -11,7 +11,8 @@
 //                 origin;
 //   rendering     rendering_stability.cpp: grazing light and view, receivers among casters, sheet
 //                 self-shadowing (acne, leaks), total internal reflection (IOR 2.42), several boundary voxels
-//                 along one ray, rays slipping through voxel corners, multi-material boundaries;
+//                 along one ray, rays slipping through voxel corners, multi-material boundaries, and glass
+//                 walls 0.5 to 8 voxels of the fitted refraction grid thick (thin-wall/*);
 //   inputs        input_stability.cpp: degenerate and non-finite inputs (a clear error or a documented
 //                 result, never a crash or NaN pixels);
 //   temporal      temporal_stability.cpp: a slowly moving and deforming scene, each method's frame-to-frame

@@ -28,6 +28,14 @@
       __global const uint *gv_buf_material, __global const uint *gv_buf_inside
 #define VOXR_GRID_VIEW() \
   gv_make(&gv_params, gv_buf_occ, gv_buf_ranked, gv_buf_count, gv_buf_normal, gv_buf_material, gv_buf_inside)
+/* A second grid in the same kernel (e.g. voxel refraction's coarse level): its parameters named n_params,
+ * n_occ, ... and its view. */
+#define VOXR_GRID_VIEW_PARAMS_NAMED(n)                                                                     \
+  VoxGridView n##_params, __global const uint *n##_occ, __global const ulong *n##_ranked,                  \
+      __global const uint *n##_count, __global const float *n##_normal, __global const uint *n##_material, \
+      __global const uint *n##_inside
+#define VOXR_GRID_VIEW_NAMED(n) \
+  gv_make(&n##_params, n##_occ, n##_ranked, n##_count, n##_normal, n##_material, n##_inside)
 
 typedef struct GridView {
   __global const uint* occ;

@@ -185,17 +185,27 @@ typedef struct RefractionPath {
   float pad1;
 } RefractionPath;
 
-/* What refract_voxel.cl needs besides the grid view (host/render/voxel_refraction.h). The grid is axis
- * aligned: world (anchor-relative) = origin + voxel_size * grid units. */
-typedef struct VoxelRefractParams {
+/* One level of voxel refraction's grids (host/render/voxel_refraction.h). The grid is axis aligned: world
+ * (anchor-relative) = origin + voxel_size * grid units. */
+typedef struct VoxelLevelParams {
   float origin[3];
   float voxel_size;
-  uint two_surface;    /* 1: voxel-two, 0: voxel-multi */
-  uint step_dda;       /* 1: 3-D DDA, 0: the papers' step along the dominant axis */
-  uint smooth_normals; /* 1: 3x3x3 weighted normals, 0: the voxel's own */
-  float cos_threshold; /* cos of the angle threshold between a run's normals */
-  uint max_steps;      /* voxels visited at most per path */
-  uint brick_dims[3];  /* the empty-space bit grid: one bit per VOXR_BRICK^3 voxels, x fastest */
+  uint brick_dims[3]; /* the empty-space bit grid: one bit per VOXR_BRICK^3 voxels, x fastest */
+  uint present;       /* 0: no such level */
+} VoxelLevelParams;
+
+/* What refract_voxel.cl needs besides the grid views: the fine level (the grid fitted to the dielectrics, or
+ * the whole scene's) the march starts in, and the coarse level (the whole scene) it goes on in after leaving
+ * the fine grid's box. */
+typedef struct VoxelRefractParams {
+  VoxelLevelParams fine;
+  VoxelLevelParams coarse; /* present 0: the fine level is the whole scene's grid */
+  uint two_surface;        /* 1: voxel-two, 0: voxel-multi */
+  uint step_dda;           /* 1: 3-D DDA, 0: the papers' step along the dominant axis */
+  uint smooth_normals;     /* 1: 3x3x3 weighted normals, 0: the voxel's own */
+  float cos_threshold;     /* cos of the angle threshold between a run's normals */
+  uint max_steps;          /* voxels visited at most per path, both levels together */
+  uint pad[3];
 } VoxelRefractParams;
 
 /* Voxels per side of a brick of the empty-space grid voxel refraction skips through. */
@@ -369,9 +379,11 @@ typedef struct RenderCamera {
   SIZE(RefractionPath) OFFSET(RefractionPath, throughput) OFFSET(RefractionPath, events)                 \
   OFFSET(RefractionPath, reflect_direction) OFFSET(RefractionPath, fresnel)                               \
   OFFSET(RefractionPath, exit_position) OFFSET(RefractionPath, exit_direction)                            \
-  SIZE(VoxelRefractParams) OFFSET(VoxelRefractParams, origin) OFFSET(VoxelRefractParams, voxel_size)      \
+  SIZE(VoxelLevelParams) OFFSET(VoxelLevelParams, origin) OFFSET(VoxelLevelParams, voxel_size)            \
+  OFFSET(VoxelLevelParams, brick_dims) OFFSET(VoxelLevelParams, present)                                  \
+  SIZE(VoxelRefractParams) OFFSET(VoxelRefractParams, fine) OFFSET(VoxelRefractParams, coarse)            \
   OFFSET(VoxelRefractParams, two_surface) OFFSET(VoxelRefractParams, cos_threshold)                       \
-  OFFSET(VoxelRefractParams, max_steps) OFFSET(VoxelRefractParams, brick_dims)                           \
+  OFFSET(VoxelRefractParams, max_steps)                                                                   \
   SIZE(ImageSpaceParams) OFFSET(ImageSpaceParams, triangle_count) OFFSET(ImageSpaceParams, inward_count)  \
   OFFSET(ImageSpaceParams, iterations) OFFSET(ImageSpaceParams, scene_size)                               \
   SIZE(DistanceMapParams) OFFSET(DistanceMapParams, reference) OFFSET(DistanceMapParams, layer_res)       \

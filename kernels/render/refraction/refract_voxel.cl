@@ -1,11 +1,14 @@
 /* refract_voxel.cl — voxel refraction (host/render/voxel_refraction.h): Chang & Lai TR 1688 §5 (two
  * surfaces) and PG 2011 §5 (multiple surfaces, Snell-law marching). A pixel whose
  * primary sample is a dielectric refracts there with the interpolated normal (exact), then marches the
- * scene's voxel grid. One work item per pixel of the list of those (dielectric_pixels.cl): the ends and paths
- * of the listed pixels are written, nothing else. The path model is refraction.h's.
+ * voxel grids: the fine level (fitted to the dielectrics, or the whole scene's grid) and, after the path
+ * leaves the fine grid's box, the coarse level (the whole scene). One work item per pixel of the list of
+ * those (dielectric_pixels.cl): the ends and paths of the listed pixels are written, nothing else. The path
+ * model is refraction.h's.
  *
- * Grid units throughout the march (voxel (i, j, k) = [i, i+1] x [j, j+1] x [k, k+1]); the grid is axis
- * aligned, so directions are the same in world and grid frames and lengths scale by voxel_size. */
+ * The current level's grid units throughout the march (voxel (i, j, k) = [i, i+1] x [j, j+1] x [k, k+1]);
+ * the grids are axis aligned, so directions are the same in world and grid frames and lengths scale by the
+ * level's voxel_size. */
 #include "grid_view.h"
 #include "refraction_path.h"
 
@@ -15,8 +18,9 @@
 
 #define MAX_MEDIA 4 /* nested dielectrics tracked */
 
-/* The voxel's unit normal, or the normals of its 3x3x3 neighbours of the same material weighted by how
- * close their centres are to q (smooth); zero where the writers' normals cancel. */
+/* The voxel's unit normal, or the normals of its 3x3x3 neighbours of the same material (channel value
+ * `material`) weighted by how close their centres are to q (smooth); zero where the writers' normals cancel.
+ */
 inline float3 boundary_normal(const GridView* g, int i, int j, int k, uint rank, uint material, float3 q,
                               uint smooth) {
   if (!smooth) return gv_normal(g, rank);
@@ -38,8 +42,31 @@ inline float3 boundary_normal(const GridView* g, int i, int j, int k, uint rank,
   return len > 1e-6f ? sum / len : gv_normal(g, rank);
 }
 
-inline float3 to_world(const VoxelRefractParams* p, float3 q) {
-  return (float3)(p->origin[0], p->origin[1], p->origin[2]) + p->voxel_size * q;
+/* One level of the grids: its view, frame and empty-space bricks. */
+typedef struct Level {
+  GridView g;
+  float3 origin; /* anchor-relative world position of grid corner (0, 0, 0) */
+  float voxel_size;
+  uint brick_dims[3];
+  __global const uint* bricks;
+} Level;
+
+inline Level level_make(GridView g, const VoxelLevelParams* lp, __global const uint* bricks) {
+  Level l;
+  l.g = g;
+  l.origin = (float3)(lp->origin[0], lp->origin[1], lp->origin[2]);
+  l.voxel_size = lp->voxel_size;
+  for (int a = 0; a < 3; ++a) l.brick_dims[a] = lp->brick_dims[a];
+  l.bricks = bricks;
+  return l;
+}
+
+inline float3 to_world(const Level* l, float3 q) {
+  return l->origin + l->voxel_size * q;
+}
+
+inline float3 to_level(const Level* l, float3 w) {
+  return (w - l->origin) / l->voxel_size;
 }
 
 /* Beer-Lambert over the straight segment [from, to] (grid units) inside the innermost medium, if any: the
@@ -142,15 +169,16 @@ inline float3 voxel_entry(const March* m, float3 here) {
   return m->origin + fmin(t, dot(here - m->origin, d)) * d;
 }
 
-/* Bit index of the brick holding voxel (i, j, k) (non-negative) in the empty-space grid. */
-inline ulong brick_index(const VoxelRefractParams* p, uint i, uint j, uint k) {
-  return ((ulong)(k / VOXR_BRICK) * p->brick_dims[1] + j / VOXR_BRICK) * p->brick_dims[0] + i / VOXR_BRICK;
+/* Bit index of the brick holding voxel (i, j, k) (non-negative) in the empty-space grid of dims brick_dims.
+ */
+inline ulong brick_index(const uint* brick_dims, uint i, uint j, uint k) {
+  return ((ulong)(k / VOXR_BRICK) * brick_dims[1] + j / VOXR_BRICK) * brick_dims[0] + i / VOXR_BRICK;
 }
 
 /* The empty-space grid: the bit of brick (bi, bj, bk) is set when any voxel of it is occupied. One work item
  * per 32-bit occupancy word; each set bit is mapped on its own (rows may end mid-word). */
 __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void brick_occupancy(VOXR_GRID_VIEW_PARAMS,
-                                                                                      VoxelRefractParams p,
+                                                                                      VoxelLevelParams p,
                                                                                       ulong words,
                                                                                       __global uint* bricks) {
   const ulong w = get_global_id(0);
@@ -164,14 +192,25 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void brick_occu
     const ulong row = v / g.dims_x;
     const uint i = (uint)(v - row * g.dims_x), j = (uint)(row % g.dims_y), k = (uint)(row / g.dims_y);
     if (k >= g.dims_z) continue;
-    const ulong brick = brick_index(&p, i, j, k);
+    const ulong brick = brick_index(p.brick_dims, i, j, k);
     atomic_or(&bricks[brick >> 5], 1u << (uint)(brick & 31));
   }
 }
 
-inline int brick_empty(const VoxelRefractParams* p, __global const uint* bricks, int i, int j, int k) {
-  const ulong brick = brick_index(p, (uint)i, (uint)j, (uint)k);
-  return ((bricks[brick >> 5] >> (uint)(brick & 31)) & 1u) == 0u;
+inline int brick_empty(const Level* l, int i, int j, int k) {
+  const ulong brick = brick_index(l->brick_dims, (uint)i, (uint)j, (uint)k);
+  return ((l->bricks[brick >> 5] >> (uint)(brick & 31)) & 1u) == 0u;
+}
+
+/* Where the segment m leaves the box [0, dims] of grid g, no earlier than its origin (grid units). */
+inline float3 grid_exit(const March* m, const GridView* g) {
+  const float3 o = m->origin, d = m->dir;
+  const float3 hi = (float3)((float)g->dims_x, (float)g->dims_y, (float)g->dims_z);
+  float t = INFINITY;
+  if (d.x != 0.0f) t = fmin(t, ((d.x > 0.0f ? hi.x : 0.0f) - o.x) / d.x);
+  if (d.y != 0.0f) t = fmin(t, ((d.y > 0.0f ? hi.y : 0.0f) - o.y) / d.y);
+  if (d.z != 0.0f) t = fmin(t, ((d.z > 0.0f ? hi.z : 0.0f) - o.z) / d.z);
+  return o + fmax(t, 0.0f) * d;
 }
 
 /* The ray parameter where origin + t dir leaves brick box [lo, lo + VOXR_BRICK]^3, >= 0. Components under
@@ -193,14 +232,19 @@ inline int same_brick(float3 q, int i, int j, int k) {
          v.y / VOXR_BRICK == j / VOXR_BRICK && v.z / VOXR_BRICK == k / VOXR_BRICK;
 }
 
+/* The fine level's view is VOXR_GRID_VIEW_PARAMS, the coarse level's VOXR_GRID_VIEW_PARAMS_NAMED(coarse)
+ * (the fine one again, unread, when p.coarse.present is 0). */
 __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_voxel(
-    VOXR_GRID_VIEW_PARAMS, RenderCamera cam, __global const SurfaceSample* primary,
-    __global const uint* pixel_list, __global const uint* pixel_count,
+    VOXR_GRID_VIEW_PARAMS, VOXR_GRID_VIEW_PARAMS_NAMED(coarse), RenderCamera cam,
+    __global const SurfaceSample* primary, __global const uint* pixel_list, __global const uint* pixel_count,
     __global const RenderMaterial* materials, uint material_count, VoxelRefractParams p,
-    __global const uint* bricks, __global SurfaceSample* ends, __global RefractionPath* paths) {
+    __global const uint* fine_bricks, __global const uint* coarse_bricks, __global const uint* material_of,
+    __global SurfaceSample* ends, __global RefractionPath* paths) {
   uint id;
   if (!rp_listed_pixel(pixel_list, pixel_count, get_global_id(0), &id)) return;
-  const GridView g = VOXR_GRID_VIEW();
+  const Level fine = level_make(VOXR_GRID_VIEW(), &p.fine, fine_bricks);
+  const Level coarse = level_make(VOXR_GRID_VIEW_NAMED(coarse), &p.coarse, coarse_bricks);
+  const Level* l = &fine; /* the level marched now */
   float3 dir = rp_camera_direction(&cam, id % cam.width, id / cam.width);
   const SurfaceSample s = primary[id];
   RefractionPath path;
@@ -221,51 +265,65 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
   uint run_material = m0;
   int in_run = 1; /* inside the boundary run last refracted at */
 
-  const float inv_size = 1.0f / p.voxel_size;
-  float3 origin = (exit_world - (float3)(p.origin[0], p.origin[1], p.origin[2])) * inv_size;
+  const float3 origin = to_level(l, exit_world);
   March m;
-  int inside_grid = march_begin(&m, &g, origin, dir, p.step_dda);
+  int inside_grid = march_begin(&m, &l->g, origin, dir, p.step_dda);
   float3 last = origin; /* where absorption was last accounted */
   int ended = 0;
   SurfaceSample end = rp_no_surface();
   /* Voxel normals follow the mesh's winding, the front normal faces the eye: give the run test the voxels'
    * orientation, or a mesh wound inwards would see its own front shell as the next surface. */
   if (inside_grid) {
-    const ulong v0 = gv_linear(&g, m.i, m.j, m.k);
-    if (gv_occupied(&g, v0) && dot(gv_normal(&g, gv_rank(&g, v0)), prev_normal) < 0.0f)
+    const ulong v0 = gv_linear(&l->g, m.i, m.j, m.k);
+    if (gv_occupied(&l->g, v0) && dot(gv_normal(&l->g, gv_rank(&l->g, v0)), prev_normal) < 0.0f)
       prev_normal = -prev_normal;
   }
   int examine_current = 0; /* after a skip the voxel begun in is examined before stepping on */
-  for (uint steps = 0; inside_grid && steps < p.max_steps; ++steps) {
-    if (!examine_current && !march_step(&m, &g, p.step_dda)) {
-      inside_grid = 0;
-      break;
+  for (uint steps = 0; steps < p.max_steps; ++steps) {
+    if (!inside_grid || (!examine_current && !march_step(&m, &l->g, p.step_dda))) {
+      if (l == &coarse || !p.coarse.present) {
+        inside_grid = 0;
+        break;
+      }
+      /* Out of the fine grid's box: the march goes on in the coarse level from where it left the box.
+       * Every dielectric lies in that box and the path is straight from here on (the coarse level has no
+       * refraction events), so it never comes back into the box. */
+      const float3 w = to_world(l, grid_exit(&m, &l->g));
+      last = to_level(&coarse, to_world(l, last));
+      l = &coarse;
+      in_run = 0;
+      inside_grid = march_begin(&m, &l->g, to_level(l, w), dir, p.step_dda);
+      examine_current = 1;
+      continue;
     }
     examine_current = 0;
     const float3 here = march_point(&m);
-    const ulong v = gv_linear(&g, m.i, m.j, m.k);
-    if (!gv_occupied(&g, v)) {
+    const ulong v = gv_linear(&l->g, m.i, m.j, m.k);
+    if (!gv_occupied(&l->g, v)) {
       in_run = 0;
-      if (brick_empty(&p, bricks, m.i, m.j, m.k)) {
+      if (brick_empty(l, m.i, m.j, m.k)) {
         /* Skip the rest of the empty brick: restart the march just past its exit. */
         const float3 beyond = here + (brick_exit(here, dir, m.i, m.j, m.k) + 1e-3f) * dir;
         if (!same_brick(beyond, m.i, m.j, m.k)) { /* else step on voxel by voxel: no progress to gain */
-          inside_grid = march_begin(&m, &g, beyond, dir, p.step_dda);
+          inside_grid = march_begin(&m, &l->g, beyond, dir, p.step_dda);
           examine_current = 1;
         }
       }
       continue;
     }
-    const uint rank = gv_rank(&g, v);
-    const uint mat = min(gv_material(&g, rank), material_count - 1u);
+    const uint rank = gv_rank(&l->g, v);
+    /* The material channel holds the priority rank the host voxelized (voxel_refraction.h): back to the
+     * scene's material index. */
+    const uint stored = min(gv_material(&l->g, rank), material_count - 1u);
+    const uint mat = material_of[stored];
     const RenderMaterial mm = materials[mat];
     if (mm.kind == VOXR_MATERIAL_OPAQUE) {
-      absorb_segment(&throughput, materials, media, depth, last, here, p.voxel_size);
-      float3 n = boundary_normal(&g, m.i, m.j, m.k, rank, mat, here, p.smooth_normals);
+      absorb_segment(&throughput, materials, media, depth, last, here, l->voxel_size);
+      float3 n = boundary_normal(&l->g, m.i, m.j, m.k, rank, stored, here, p.smooth_normals);
       if (dot(n, n) < 1e-12f) n = -dir;
       if (dot(n, dir) > 0.0f) n = -n;
       /* Where the ray entered the voxel (the papers' sample point may lie inside the opaque object). */
-      rp_store3(end.position, to_world(&p, voxel_entry(&m, here)));
+      rp_store3(end.position, to_world(l, voxel_entry(&m, here)));
       end.triangle = VOXR_VOXEL_HIT;
       rp_store3(end.normal, n);
       end.material = mat;
@@ -279,9 +337,11 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
       run_material = mat;
       continue;
     }
-    /* A dielectric boundary voxel. */
+    /* A dielectric boundary voxel. On the coarse level the path is outside the fine box, which holds every
+     * dielectric triangle: the voxel's glass lies in the box, beside the ray. */
+    if (l == &coarse) continue;
     if (p.two_surface && (events >= 2u || mat != m0)) continue; /* voxel-two: only its object's back */
-    const float3 n_voxel = gv_normal(&g, rank);
+    const float3 n_voxel = gv_normal(&l->g, rank);
     if (dot(n_voxel, n_voxel) < 1e-12f)
       continue; /* the writers' normals cancel: glass thinner than a voxel */
     /* The surface refracted at last: its boundary run, or a voxel of it within two voxels of the event (a
@@ -289,8 +349,9 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
      * the angle threshold (PG 2011): then it is the next surface, e.g. the far side of a thin part. */
     const int near_last = in_run || length(here - last) < 2.0f;
     if (near_last && run_material == mat && dot(n_voxel, prev_normal) > p.cos_threshold) continue;
-    const float3 n = p.smooth_normals ? boundary_normal(&g, m.i, m.j, m.k, rank, mat, here, 1u) : n_voxel;
-    absorb_segment(&throughput, materials, media, depth, last, here, p.voxel_size);
+    const float3 n =
+        p.smooth_normals ? boundary_normal(&l->g, m.i, m.j, m.k, rank, stored, here, 1u) : n_voxel;
+    absorb_segment(&throughput, materials, media, depth, last, here, l->voxel_size);
     last = here;
     const int inside = rp_medium_index(media, depth, mat);
     if (inside < 0 && depth == MAX_MEDIA) { /* nested deeper than the stack holds: say so, do not guess */
@@ -312,17 +373,17 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
     prev_normal = n_voxel;
     run_material = mat;
     in_run = 1;
-    exit_world = to_world(&p, here);
+    exit_world = to_world(l, here);
     if ((events & VOXR_PATH_EVENTS_MASK) >= VOXR_PATH_MAX_EVENTS) {
       events |= VOXR_PATH_LOST;
       ended = 1;
       break;
     }
     dir = new_dir;
-    march_restart(&m, &g, here, dir, p.step_dda, m.i, m.j, m.k);
+    march_restart(&m, &l->g, here, dir, p.step_dda, m.i, m.j, m.k);
   }
   if (!ended) {
-    absorb_segment(&throughput, materials, media, depth, last, march_point(&m), p.voxel_size);
+    absorb_segment(&throughput, materials, media, depth, last, march_point(&m), l->voxel_size);
     if (inside_grid && depth > 0)
       events |= VOXR_PATH_LOST; /* out of steps inside glass */
     else
