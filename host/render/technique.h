@@ -41,6 +41,7 @@
 namespace voxr {
 
 class Voxelizer;
+class TriangleGrids;
 
 struct RenderOptions {
   ShadowMethod shadows = ShadowMethod::kVoxel;
@@ -89,6 +90,9 @@ struct FrameContext {
   const std::vector<Material>* host_materials = nullptr;
   const EnvironmentMap* environment = nullptr;  // what rays leaving the scene see (host copy)
   SceneReference* reference = nullptr;          // the exact reference; null when the caller gave none
+  // The frame's per-voxel triangle lists of *mesh by resolution (render/triangle_grid.h), built on a
+  // technique's first get() of each frame and shared by the exact techniques; FrameRenderer owns them.
+  TriangleGrids* triangle_grids = nullptr;
   const CameraFrame* camera = nullptr;
   const RenderLight* light = nullptr;
   const cl::Buffer* primary_samples = nullptr;   // one SurfaceSample per pixel, row 0 at the top
