@@ -124,25 +124,39 @@ typedef struct TgHit {
   int opaque;     /* its material is opaque */
 } TgHit;
 
-/* Whether hit c beats the best so far: nearer by more than `coincide`; within it, an opaque surface before
- * a dielectric or sheet, then the lower triangle id (the reference's rule where surfaces touch). */
+/* Whether hit c beats the best so far: nearer by more than `coincide`; within it (coincident surfaces, e.g. a
+ * glass face standing on a floor, which rounding orders either way) an opaque surface before a dielectric or
+ * sheet, of two opaque ones the nearer, then the lower id, and of dielectrics and sheets the lower id: the
+ * reference's rule where surfaces touch (ReferenceScene::intersect). */
 inline int tg_better(const TgHit* c, const TgHit* best, float coincide) {
   if (best->triangle == VOXR_NO_TRIANGLE) return 1;
   if (c->t < best->t - coincide) return 1;
   if (c->t > best->t + coincide) return 0;
   if (c->opaque != best->opaque) return c->opaque > best->opaque;
+  if (c->opaque && c->t != best->t) return c->t < best->t;
   return c->triangle < best->triangle;
 }
 
-/* The nearest hit of origin + t dir, t in [t_min, t_max], over the triangles the grid lists, skipping
- * triangle `skip` (the surface a ray leaves: no distance epsilon; VOXR_NO_TRIANGLE skips none). The grid is
- * walked voxel by voxel (gv_ray_*); each occupied voxel's triangles are tested (tg_intersect), and the
- * march ends at the first voxel whose exit lies beyond the best hit so far (plus a thousandth of a voxel):
- * conservative lists hold every triangle touching a voxel, so no nearer hit can lie further on. Hits within
- * `coincide` (t units) of each other are ordered by tg_better. materials: RenderMaterial by material id.
- * Returns whether a hit was found (*hit; hit->triangle is VOXR_NO_TRIANGLE otherwise). */
-inline int tg_nearest_hit(const TriangleGridView* tg, float3 origin, float3 dir, float t_min, float t_max,
-                          uint skip, __global const RenderMaterial* materials, float coincide, TgHit* hit) {
+/* Whether triangle `a` shares a vertex index with `b`. */
+inline int tg_shares_vertex(uint4 a, uint4 b) {
+  return a.x == b.x || a.x == b.y || a.x == b.z || a.y == b.x || a.y == b.y || a.y == b.z || a.z == b.x ||
+         a.z == b.y || a.z == b.z;
+}
+
+/* The nearest hit of origin + t dir, t in [t_min, t_max], over the triangles the grid lists, for a ray
+ * leaving the triangles leaving[0 .. leaving_count) (the surface it left and coincident ones it passed
+ * there; at most 8): those are skipped at any t, and triangles sharing a vertex with one of them are skipped
+ * below t = `neighbour_t` (the same surface at a shared edge or vertex, which a rounded origin may lie a
+ * hair beyond). The grid is walked voxel by voxel (gv_ray_*) from the origin; each occupied voxel's
+ * triangles are tested (tg_intersect), and the march ends at the first voxel whose exit lies beyond the best
+ * hit so far (plus `coincide` and a thousandth of a voxel): conservative lists hold every triangle that
+ * touches a voxel, so no nearer hit can lie further on (a hit behind the origin, t_min < 0, lies on a
+ * triangle touching the first voxel). Hits within `coincide` (t units) of each other are ordered by
+ * tg_better. materials: RenderMaterial by material id. Returns whether a hit was found (*hit; its triangle
+ * is VOXR_NO_TRIANGLE otherwise). */
+inline int tg_nearest_hit_leaving(const TriangleGridView* tg, float3 origin, float3 dir, float t_min,
+                                  float t_max, const uint* leaving, uint leaving_count, float neighbour_t,
+                                  __global const RenderMaterial* materials, float coincide, TgHit* hit) {
   hit->triangle = VOXR_NO_TRIANGLE;
   hit->t = INFINITY;
   hit->b1 = hit->b2 = 0.0f;
@@ -168,12 +182,20 @@ inline int tg_nearest_hit(const TriangleGridView* tg, float3 origin, float3 dir,
         if (end <= tg->capacity) {
           for (ulong e = first; e < end; ++e) {
             const uint id = tg->ids[e];
-            if (id == skip) continue;
+            int left = 0;
+            for (uint l = 0; l < leaving_count; ++l) left |= id == leaving[l];
+            if (left) continue;
             const uint4 tri = tg->triangles[id];
             TgHit c;
             if (!tg_intersect(&ray, tg->positions[tri.x].xyz, tg->positions[tri.y].xyz,
                               tg->positions[tri.z].xyz, t_min, t_max, &c.t, &c.b1, &c.b2))
               continue;
+            if (c.t < neighbour_t) {
+              int neighbour = 0;
+              for (uint l = 0; l < leaving_count; ++l)
+                neighbour |= tg_shares_vertex(tri, tg->triangles[leaving[l]]);
+              if (neighbour) continue;
+            }
             c.triangle = id;
             c.material = tri.w;
             c.opaque = materials[tri.w].kind == VOXR_MATERIAL_OPAQUE;
@@ -187,6 +209,15 @@ inline int tg_nearest_hit(const TriangleGridView* tg, float3 origin, float3 dir,
     if (gv_ray_step(&walk, &tg->grid) < 0) break;
   }
   return hit->triangle != VOXR_NO_TRIANGLE;
+}
+
+/* tg_nearest_hit_leaving for a ray that leaves one triangle, `skip` (VOXR_NO_TRIANGLE: none), skipped at
+ * any t and nothing else: no distance epsilon. */
+inline int tg_nearest_hit(const TriangleGridView* tg, float3 origin, float3 dir, float t_min, float t_max,
+                          uint skip, __global const RenderMaterial* materials, float coincide, TgHit* hit) {
+  const uint leaving[1] = {skip};
+  return tg_nearest_hit_leaving(tg, origin, dir, t_min, t_max, leaving, skip != VOXR_NO_TRIANGLE ? 1u : 0u,
+                                -INFINITY, materials, coincide, hit);
 }
 
 #endif
