@@ -23,10 +23,11 @@
 
 #define VOXR_TRIANGLE_GRID_PARAMS                                                                        \
   VOXR_GRID_VIEW_PARAMS, __global const ulong *tg_buf_offsets, __global const uint *tg_buf_ids,          \
-      ulong tg_list_capacity, __global const float4 *tg_buf_positions, __global const uint4 *tg_buf_triangles
+      ulong tg_list_capacity, __global const float4 *tg_buf_positions, __global const uint4 *tg_buf_triangles, \
+      __global const uint *tg_buf_bricks, uint4 tg_brick_dims
 #define VOXR_TRIANGLE_GRID()                                                                   \
   tg_make(&gv_params, VOXR_GRID_VIEW(), tg_buf_offsets, tg_buf_ids, tg_list_capacity, tg_buf_positions, \
-          tg_buf_triangles)
+          tg_buf_triangles, tg_buf_bricks, tg_brick_dims)
 
 typedef struct TriangleGridView {
   GridView grid;
@@ -36,11 +37,13 @@ typedef struct TriangleGridView {
   ulong capacity;
   __global const float4* positions;
   __global const uint4* triangles;
+  __global const uint* bricks; /* one bit per VOXR_BRICK^3 voxels, set where one is occupied */
+  uint brick_x, brick_y;       /* bricks along x and y */
 } TriangleGridView;
 
 inline TriangleGridView tg_make(const VoxGridView* p, GridView grid, __global const ulong* offsets,
                                 __global const uint* ids, ulong capacity, __global const float4* positions,
-                                __global const uint4* triangles) {
+                                __global const uint4* triangles, __global const uint* bricks, uint4 brick_dims) {
   TriangleGridView tg;
   tg.grid = grid;
   const float* m = p->world_to_grid;
@@ -50,6 +53,9 @@ inline TriangleGridView tg_make(const VoxGridView* p, GridView grid, __global co
   tg.capacity = capacity;
   tg.positions = positions;
   tg.triangles = triangles;
+  tg.bricks = bricks;
+  tg.brick_x = brick_dims.x;
+  tg.brick_y = brick_dims.y;
   return tg;
 }
 
@@ -114,6 +120,40 @@ inline int tg_intersect(const TgRay* r, float3 a, float3 b, float3 c, float t_mi
   return 1;
 }
 
+/* ---- empty space ---------------------------------------------------------------------------------- */
+
+inline int tg_brick_empty(const TriangleGridView* tg, int i, int j, int k) {
+  const ulong b = ((ulong)(k / VOXR_BRICK) * tg->brick_y + (uint)(j / VOXR_BRICK)) * tg->brick_x +
+                  (uint)(i / VOXR_BRICK);
+  return ((tg->bricks[b >> 5] >> (uint)(b & 31)) & 1u) == 0u;
+}
+
+/* In an empty brick, moves the walk to the voxel just past the brick's exit along the ray og + t dg (grid
+ * units; a ten-thousandth of a voxel beyond it, far inside the lists' conservative widening, so no listed
+ * triangle is passed). Returns 0 when that point leaves the grid; the walk is unchanged (and the caller
+ * steps on voxel by voxel) when rounding keeps the point in the same brick. */
+inline int tg_skip_brick(GvRay* walk, const GridView* g, float3 og, float3 dg) {
+  const int bi = walk->i / VOXR_BRICK * VOXR_BRICK, bj = walk->j / VOXR_BRICK * VOXR_BRICK;
+  const int bk = walk->k / VOXR_BRICK * VOXR_BRICK;
+  float t = INFINITY;
+  if (walk->si != 0) t = fmin(t, ((float)(walk->si > 0 ? bi + VOXR_BRICK : bi) - og.x) / dg.x);
+  if (walk->sj != 0) t = fmin(t, ((float)(walk->sj > 0 ? bj + VOXR_BRICK : bj) - og.y) / dg.y);
+  if (walk->sk != 0) t = fmin(t, ((float)(walk->sk > 0 ? bk + VOXR_BRICK : bk) - og.z) / dg.z);
+  t += 1.0e-4f / length(dg);
+  if (!(t > walk->t)) return 1;
+  const float3 p = og + t * dg;
+  const int i = (int)floor(p.x), j = (int)floor(p.y), k = (int)floor(p.z);
+  if (!gv_contains(g, i, j, k)) return 0;
+  if (i / VOXR_BRICK * VOXR_BRICK == bi && j / VOXR_BRICK * VOXR_BRICK == bj && k / VOXR_BRICK * VOXR_BRICK == bk)
+    return 1;
+  walk->i = i;
+  walk->j = j;
+  walk->k = k;
+  gv_ray_steps(walk, og, dg, (float3)(1.0f) / dg);
+  walk->t = t;
+  return 2;
+}
+
 /* ---- nearest hit through the lists ----------------------------------------------------------------- */
 
 typedef struct TgHit {
@@ -175,7 +215,13 @@ inline int tg_nearest_hit_leaving(const TriangleGridView* tg, float3 origin, flo
   for (uint step = 0; step < max_steps; ++step) {
     if (walk.t > t_max) break;
     const ulong v = gv_linear(&tg->grid, walk.i, walk.j, walk.k);
-    if (gv_occupied(&tg->grid, v)) {
+    if (!gv_occupied(&tg->grid, v)) {
+      if (hit->triangle == VOXR_NO_TRIANGLE && tg_brick_empty(tg, walk.i, walk.j, walk.k)) {
+        const int skipped = tg_skip_brick(&walk, &tg->grid, og, dg);
+        if (skipped == 0) break;
+        if (skipped == 2) continue;
+      }
+    } else {
       const uint rank = gv_rank(&tg->grid, v);
       if (rank < tg->grid.voxels_set) {
         const ulong first = tg->offsets[rank], end = tg->offsets[rank + 1];

@@ -33,7 +33,9 @@ class VoxelExactRefraction final : public RefractionTechnique {
   VoxelExactRefraction(ClRuntime& cl, Voxelizer& voxelizer) : cl_(cl), voxelizer_(voxelizer) {}
 
   std::vector<ProgramSpec> programs(const RenderOptions&) const override {
-    return {{"refract_exact.cl", exact_defines()}};
+    std::vector<ProgramSpec> specs = TriangleGrid::programs();
+    specs.push_back({"refract_exact.cl", exact_defines()});
+    return specs;
   }
   void prepare(const RenderOptions&) override { voxelizer_.prepare(TriangleGrid::voxelize_options()); }
   bool writes_ends() const override { return true; }
