@@ -19,6 +19,7 @@ uint64_t DeviceVoxelGrid::device_bytes() const {
   if (channels.has(Channel::kCount)) bytes += voxels_set * 4;
   if (channels.has(Channel::kNormal)) bytes += voxels_set * 24;
   if (channels.has(Channel::kMaterial)) bytes += voxels_set * 4;
+  if (has_triangle_lists) bytes += (voxels_set + 1) * 8 + list_capacity * 4;
   return bytes;
 }
 
@@ -55,6 +56,8 @@ void DeviceVoxelGrid::reset(const GridSpec& grid, ChannelSet set) {
   voxels_set = 0;
   inside_voxels = 0;
   has_rank_index = false;
+  has_triangle_lists = false;
+  list_capacity = 0;
 }
 
 void DeviceVoxelGrid::adopt_occupancy(ClRuntime& cl, uint32_t* words_data, uint64_t count) {

@@ -10,7 +10,10 @@
 //   count         voxels_set uint32, in rank order;
 //   normal_sum    voxels_set x 3 int32 (fixed point, VOXR_NORMAL_ONE per writer), normal voxels_set x 3
 //                 float (unit, zero where the sum cancels);
-//   material      voxels_set uint32.
+//   material      voxels_set uint32;
+//   triangle lists (VoxelizeOptions::triangle_lists) list_offsets voxels_set + 1 uint64 (exclusive scan of
+//                 count; the last entry is the total of pairs), list_ids list_capacity uint32: the mesh
+//                 indices of the triangles of voxel r at [list_offsets[r], list_offsets[r + 1]), ascending.
 // Why sparse by rank and not dense: a dense normal channel at 1024^3 needs 12 GiB; sparse it needs 12 bytes
 // per surface voxel (tens of MiB), and a kernel pays one extra 8-byte load for the rank
 // (bench/grid_view_bench.cpp measures the two against each other). Kernels read all of it through
@@ -51,6 +54,8 @@ class DeviceVoxelGrid {
                                 // total unused)
   uint64_t inside_voxels = 0;   // set inside bits (when channels has inside)
   bool has_rank_index = false;  // whether `ranked` describes the current occupancy
+  bool has_triangle_lists = false;  // list_offsets and list_ids describe the current voxels
+  uint64_t list_capacity = 0;       // entries of list_ids (a frame with deferred counts: the capacity)
   // What the last voxelization into this grid counted, with headroom: the capacities the next one runs over
   // when a frame defers its counts (ClRuntime::counts_deferred). Kept per grid, not per voxelizer: one
   // voxelizer fills several grids a frame (the light's, the refraction grid), each with its own counts.
@@ -58,10 +63,12 @@ class DeviceVoxelGrid {
     uint64_t listed = 0;   // hybrid: the large-triangle list
     uint64_t records = 0;  // the copy records (RecordBins::scan)
     uint64_t set = 0;      // the set voxels (the sparse channels' entries)
+    uint64_t pairs = 0;    // the (triangle, voxel) pairs of the triangle lists
   } capacities;
 
   GrowingBuffer occ, inside, ranked;
   GrowingBuffer count, normal_sum, normal, material;
+  GrowingBuffer list_offsets, list_ids;
 
   // 32-bit words of a dense bit channel (occ, inside) on `spec`.
   uint64_t words() const { return (spec.voxel_count() + 31) / 32; }

@@ -16,8 +16,9 @@ constexpr size_t kGroup = 64;
 }  // namespace
 
 FrameRenderer::FrameRenderer(ClRuntime& cl)
-    : cl_(cl), rasterizer_(cl), dielectric_pixels_(cl), voxelizer_(cl) {
+    : cl_(cl), rasterizer_(cl), dielectric_pixels_(cl), voxelizer_(cl), triangle_grids_(cl, voxelizer_) {
   ctx_.cl = &cl;
+  ctx_.triangle_grids = &triangle_grids_;
 }
 FrameRenderer::~FrameRenderer() = default;
 
@@ -146,6 +147,7 @@ RenderedFrame FrameRenderer::render_once(const RenderLight& light, const CameraF
   VOXR_CHECK(mesh_ != nullptr);
   st = FrameStats{};
   const auto profiled_before = cl_.profiler().stats();
+  triangle_grids_.begin_frame();  // nothing precomputed: the lists are rebuilt on their first use
 
   ShadowTechnique& shadows = shadow(options.shadows);
   RefractionTechnique& refract = refraction(options.refraction.method);

@@ -27,6 +27,7 @@
 #include "render/scene_reference.h"
 #include "render/shadow_method.h"
 #include "render/technique.h"
+#include "render/triangle_grid.h"
 #include "render/visibility_rasterizer.h"
 #include "util/image_rgba.h"
 #include "voxelize/device_mesh.h"
@@ -81,6 +82,7 @@ class FrameRenderer {
   VisibilityRasterizer rasterizer_;
   DielectricPixels dielectric_pixels_;
   Voxelizer voxelizer_;  // the device's one, shared by the techniques that voxelize (made before them)
+  TriangleGrids triangle_grids_;  // the exact techniques' triangle lists, rebuilt every frame
   std::map<ShadowMethod, std::unique_ptr<ShadowTechnique>> shadows_;
   std::map<RefractionMethod, std::unique_ptr<RefractionTechnique>> refractions_;
   std::map<const void*, bool> scene_set_;  // technique -> its per-scene setup ran for the current scene

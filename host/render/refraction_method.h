@@ -12,6 +12,7 @@ namespace voxr {
 enum class RefractionMethod {
   kVoxelMulti,
   kVoxelTwo,
+  kVoxelExact,
   kImageSpace,
   kDistanceMaps,
   kReference,
@@ -30,11 +31,13 @@ enum class RefractionGrid { kFitted, kScene };
 inline constexpr uint32_t kCoarseDivisor = 2;
 
 using RefractionMethodInfo = NamedValue<RefractionMethod>;
-inline constexpr std::array<RefractionMethodInfo, 7> kRefractionMethods = {{
+inline constexpr std::array<RefractionMethodInfo, 8> kRefractionMethods = {{
     {RefractionMethod::kVoxelMulti, "voxel-multi",
      "Chang & Lai PG 2011: Snell-law marching through the voxels, refracting at every boundary"},
     {RefractionMethod::kVoxelTwo, "voxel-two",
      "Chang & Lai TR 1688: exact front surface, back surface found by marching, two refractions"},
+    {RefractionMethod::kVoxelExact, "voxel-exact",
+     "beyond the papers: the matched path on the exact triangles listed per voxel, rebuilt every frame"},
     {RefractionMethod::kImageSpace, "image-space",
      "Wyman 2005: front/back depth and normal buffers, d_V/d_N distance, nearby geometry by iteration"},
     {RefractionMethod::kDistanceMaps, "distance-maps",
@@ -92,7 +95,8 @@ inline bool is_reference_refraction(RefractionMethod m) {
 struct RefractionOptions {
   RefractionMethod method = RefractionMethod::kNone;
   // Voxel methods: voxels along the longest side of the fine grid (fitted: the dielectrics' bounds and a
-  // margin; scene: the whole scene).
+  // margin; scene: the whole scene). voxel-exact: of the whole scene's grid of triangle lists, a speed knob
+  // only.
   uint32_t resolution = 256;
   RefractionGrid grid = RefractionGrid::kFitted;
   // kFitted: voxels along the coarse grid's longest side (the whole scene); 0: resolution / kCoarseDivisor.

@@ -42,6 +42,7 @@
 namespace voxr {
 
 class Voxelizer;
+class TriangleGrids;
 
 struct RenderOptions {
   ShadowMethod shadows = ShadowMethod::kVoxel;
@@ -92,6 +93,9 @@ struct FrameContext {
   const std::vector<Material>* host_materials = nullptr;
   const EnvironmentMap* environment = nullptr;  // what rays leaving the scene see (host copy)
   SceneReference* reference = nullptr;          // the exact reference; null when the caller gave none
+  // The frame's per-voxel triangle lists of *mesh by resolution (render/triangle_grid.h), built on a
+  // technique's first get() of each frame and shared by the exact techniques; FrameRenderer owns them.
+  TriangleGrids* triangle_grids = nullptr;
   const CameraFrame* camera = nullptr;
   const RenderLight* light = nullptr;
   const cl::Buffer* primary_samples = nullptr;   // one SurfaceSample per pixel, row 0 at the top
@@ -180,6 +184,7 @@ std::unique_ptr<ShadowTechnique> make_reference_shadows(ClRuntime& cl, Voxelizer
 std::unique_ptr<ShadowTechnique> make_no_shadows(ClRuntime& cl, Voxelizer& voxelizer);
 std::unique_ptr<RefractionTechnique> make_voxel_refraction(ClRuntime& cl,
                                                            Voxelizer& voxelizer);  // voxel-multi, voxel-two
+std::unique_ptr<RefractionTechnique> make_voxel_exact_refraction(ClRuntime& cl, Voxelizer& voxelizer);
 std::unique_ptr<RefractionTechnique> make_image_space_refraction(ClRuntime& cl, Voxelizer& voxelizer);
 std::unique_ptr<RefractionTechnique> make_distance_map_refraction(ClRuntime& cl, Voxelizer& voxelizer);
 std::unique_ptr<RefractionTechnique> make_reference_refraction(
@@ -194,9 +199,10 @@ inline constexpr std::array<ShadowTechniqueRow, 6> kShadowTechniques = {{
     {ShadowMethod::kReference, make_reference_shadows},
     {ShadowMethod::kNone, make_no_shadows},
 }};
-inline constexpr std::array<RefractionTechniqueRow, 7> kRefractionTechniques = {{
+inline constexpr std::array<RefractionTechniqueRow, 8> kRefractionTechniques = {{
     {RefractionMethod::kVoxelMulti, make_voxel_refraction},
     {RefractionMethod::kVoxelTwo, make_voxel_refraction},
+    {RefractionMethod::kVoxelExact, make_voxel_exact_refraction},
     {RefractionMethod::kImageSpace, make_image_space_refraction},
     {RefractionMethod::kDistanceMaps, make_distance_map_refraction},
     {RefractionMethod::kReference, make_reference_refraction},

@@ -220,6 +220,22 @@ constexpr Bound kBounds[] = {
     {"thin-wall/8", "image-space", Measure::kEventMismatch, 0.93, 0.92},  // 0.8529, 0.827
     {"thin-wall/8", "distance-maps", Measure::kImageRmse, 0.11, 0.092},  // 0.06933, 0.0609
     {"thin-wall/8", "distance-maps", Measure::kEventMismatch, 0.55, 0.41},  // 0.3628, 0.2669
+    // voxel-exact: requirements, not measurements (issue 19: PSNR >= 40 dB, i.e. image RMSE <= 0.01, and event
+    // mismatch <= 1 % against the matched reference; its TIR is the reference's). Small version measured
+    // 2026-12-02 (image RMSE, event mismatch) in the comments; the full one not yet.
+    {"total-internal-reflection", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 5.737e-06
+    {"total-internal-reflection", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0
+    {"total-internal-reflection", "voxel-exact", Measure::kTirFound, 0.99, 0.99},  // 1
+    {"nested-thin-shells", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 1.195e-05
+    {"nested-thin-shells", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0
+    {"grazing-slab", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 0.003134
+    {"grazing-slab", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0.0006959
+    {"voxel-corners", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 2.727e-07
+    {"voxel-corners", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0
+    {"multi-material/ball-figure", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 4.604e-06
+    {"multi-material/ball-figure", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0
+    {"multi-material/touching", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 0.007103
+    {"multi-material/touching", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0.002901
 };
 // clang-format on
 

@@ -37,7 +37,7 @@ std::vector<ProgramSpec> SliceVoxelizer::programs(const VoxelizeOptions& options
   const bool hybrid = method_ == VoxelizeMethod::kHybrid, grid = method_ == VoxelizeMethod::kGrid;
   std::vector<ProgramSpec> specs = scan_programs();
   specs.push_back({"vox_setup.cl", with(base, "VOX_SETUP_LIST", hybrid ? "1" : "0")});
-  const int passes = options.channels.sparse() ? 2 : 1;
+  const int passes = options.triangle_lists ? 3 : options.channels.sparse() ? 2 : 1;
   for (int pass = 0; pass < passes; ++pass) {
     const Defines p = with(base, "VOX_PASS", std::to_string(pass));
     if (hybrid) specs.push_back({"vox_direct.cl", p});
@@ -48,6 +48,7 @@ std::vector<ProgramSpec> SliceVoxelizer::programs(const VoxelizeOptions& options
     specs.insert(specs.end(), expand.begin(), expand.end());
   }
   if (packed_sums(options.channels)) specs.push_back({"vox_finalize.cl", base});
+  if (options.triangle_lists) specs.push_back({"vox_lists.cl", base});
   return specs;
 }
 
@@ -206,6 +207,60 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
       cl::Kernel finalize = cl_.kernel("vox_finalize.cl", "vox_finalize", base);
       cl_.launch("finalize", finalize, set, kGroup, acc, count, nsum, normal, cl_uint(set), set_total,
                  cl_uint(channels));
+    }
+
+    if (options.triangle_lists) {
+      progress("triangle lists");
+      // count -> scan: the offsets of `set` lists and, at [set], the total of pairs.
+      cl::Buffer counts = scratch("the list counts", (set + 1) * 4);
+      cl::Kernel list_counts = cl_.kernel("vox_lists.cl", "list_counts", base);
+      cl_.launch("lists", list_counts, set + 1, kGroup, out.count.buffer, set_total, cl_uint(set), counts);
+      cl::Buffer& offsets = out.list_offsets.ensure(cl_, (set + 1) * 8, "the triangle list offsets");
+      cl::Buffer pairs_total = scratch("the list total", 8);
+      exclusive_scan(cl_, ScanKind::kUintToUlong, counts, offsets, set + 1, pairs_total, "lists");
+      // The ids' entries: the pairs, or with deferred counts a capacity (a list past it is left unfilled
+      // and the frame rendered again).
+      auto check_pairs = [](uint64_t total) {
+        if (total > 0xffffffffull)
+          fail("{} (triangle, voxel) pairs exceed the 2^32-1 the triangle lists index; lower the resolution",
+               total);
+      };
+      uint64_t pairs = 0;
+      uint64_t& pair_capacity = out.capacities.pairs;
+      if (cl_.counts_deferred() && pair_capacity > 0) {
+        pairs = pair_capacity;
+        cl_.read_count_later(
+            pairs_total, 8, "readback list total", [&pair_capacity, pairs, check_pairs](uint64_t total) {
+              check_pairs(total);
+              if (total <= pairs) return true;
+              pair_capacity =
+                  std::max(pair_capacity, std::min<uint64_t>(ClRuntime::with_headroom(total), 0xffffffffull));
+              return false;
+            });
+      } else {
+        cl_.download(pairs_total, &pairs, 8, "readback list total");
+        check_pairs(pairs);
+        pair_capacity = std::min<uint64_t>(ClRuntime::with_headroom(pairs), 0xffffffffull);
+      }
+      cl::Buffer& ids = out.list_ids.ensure(cl_, std::max<uint64_t>(pairs, 1) * 4, "the triangle list ids");
+      cl::Buffer cursors = scratch("the list cursors", (set + 1) * 8);
+      cl_.queue().enqueueCopyBuffer(offsets, cursors, 0, 0, (set + 1) * 8);
+      VoxGridParams list_params = params;
+      list_params.dims[3] = uint32_t(set);
+      list_params.list_capacity = uint32_t(pairs);
+      if (hybrid && tris > 0) {
+        cl::Kernel direct = cl_.kernel("vox_direct.cl", "vox_direct", with(base, "VOX_PASS", "2"));
+        VoxGridParams direct_params = make_grid_params(grid, uint32_t(tris), margin, 1, channels);
+        direct_params.dims[3] = uint32_t(set);
+        direct_params.list_capacity = uint32_t(pairs);
+        cl_.launch("lists", direct, tris, kGroup, direct_params, mesh.positions(), mesh.triangles(), list,
+                   dummy, occ, ranked, cursors, ids);
+      }
+      raster_listed("lists", 2, list_params, ranked, cursors, ids);
+      cl::Kernel sort = cl_.kernel("vox_lists.cl", "list_sort", base);
+      cl_.launch("lists", sort, set, kGroup, offsets, ids, cl_uint(set), set_total, cl_ulong(pairs));
+      out.list_capacity = pairs;
+      out.has_triangle_lists = true;
     }
   }
 

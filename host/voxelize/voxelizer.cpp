@@ -44,6 +44,9 @@ void VoxelizeOptions::validate() const {
   if (channels.has(Channel::kInside) && !solid)
     fail("the inside channel comes from solid voxelization: add --solid xor|late|parity|flood");
   if (rows_per_copy == 0) fail("rows per copy must be at least 1");
+  if (triangle_lists && (!info.attributes || !channels.has(Channel::kCount)))
+    fail("triangle lists come from the count channel of --method hybrid, slice or grid (got {} with {})",
+         info.name, channels.to_string());
 }
 
 VoxelizeOptions VoxelizeOptions::surface_only() const {

@@ -67,16 +67,20 @@ VoxelizeMethod parse_voxelize_method(std::string_view name);
 
 struct VoxelizeOptions {
   VoxelizeMethod method = VoxelizeMethod::kHybrid;
-  RasterMode mode = RasterMode::kConservative;             // slice family
-  SlicemapSlicing slicing = SlicemapSlicing::kUniform;     // slicemap
-  ChannelSet channels;                                     // surface channels; inside comes with `solid`
-  std::optional<SolidMode> solid;                          // fill the interior (adds the inside channel)
-  uint32_t rows_per_copy = 4;                              // rows of a slab one raster work item walks
-  uint64_t record_budget_bytes = 256ull << 20;             // device memory for copy/tile records per batch
+  RasterMode mode = RasterMode::kConservative;          // slice family
+  SlicemapSlicing slicing = SlicemapSlicing::kUniform;  // slicemap
+  ChannelSet channels;                                  // surface channels; inside comes with `solid`
+  std::optional<SolidMode> solid;                       // fill the interior (adds the inside channel)
+  uint32_t rows_per_copy = 4;                           // rows of a slab one raster work item walks
+  uint64_t record_budget_bytes = 256ull << 20;          // device memory for copy/tile records per batch
+  // Slice family with the count channel: also the per-voxel triangle lists (DeviceVoxelGrid::list_offsets,
+  // list_ids): count -> scan -> the raster passes again writing ids -> sort (kernels/voxelize/vox_lists.cl).
+  // With the conservative rule a voxel lists every triangle that touches it.
+  bool triangle_lists = false;
   std::function<void(const std::string& stage)> progress;  // optional, called between stages
 
   // Throws voxr::Error explaining a combination the method cannot produce (slicemap with count/normal/
-  // material or with a mode, inside without solid, rows_per_copy 0).
+  // material or with a mode, inside without solid, rows_per_copy 0, triangle lists without count).
   void validate() const;
   // These options without the inside channel: what the surface voxelizer is asked for.
   VoxelizeOptions surface_only() const;

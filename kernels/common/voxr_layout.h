@@ -41,6 +41,7 @@ typedef struct VoxGridParams {
   uint margin;   /* conservative mode: voxel boxes are widened by this many 1/VOXR_SUBVOXEL units on every
                     side, the bound on how far snapping and the float transform move a vertex */
   uint channels; /* attribute pass: the ChannelSet bits to accumulate (host/grid/channel_table.h) */
+  uint list_capacity; /* triangle-list pass (VOX_PASS 2): entries of the id array (writes past it dropped) */
 } VoxGridParams;
 
 /* Copy records, the duplication step the slice voxelizer (a triangle's slabs x blocks of rows), the slicemap
@@ -74,7 +75,8 @@ typedef struct VoxSnappedTriangle {
   int y[3];
   int z[3];
   uint material;
-  uint pad[2];
+  uint source; /* the triangle's index in the mesh (vox_setup.cl; the triangle-list pass writes it) */
+  uint pad;
 } VoxSnappedTriangle;
 
 /* The rank index of a dense occupancy array: one 64-bit word per 32-bit occupancy word, holding the word
@@ -361,10 +363,11 @@ typedef struct RenderCamera {
   SIZE(VoxGridParams)                                                                                    \
   OFFSET(VoxGridParams, world_to_grid) OFFSET(VoxGridParams, dims) OFFSET(VoxGridParams, rows_per_copy)   \
   OFFSET(VoxGridParams, triangle_count) OFFSET(VoxGridParams, margin) OFFSET(VoxGridParams, channels)     \
+  OFFSET(VoxGridParams, list_capacity)                                                                    \
   SIZE(CopyBox) OFFSET(CopyBox, first) OFFSET(CopyBox, width)                                             \
   SIZE(CopyRecord) OFFSET(CopyRecord, triangle) OFFSET(CopyRecord, cell)                                  \
   SIZE(VoxSnappedTriangle) OFFSET(VoxSnappedTriangle, x) OFFSET(VoxSnappedTriangle, y)                    \
-  OFFSET(VoxSnappedTriangle, z) OFFSET(VoxSnappedTriangle, material)                                      \
+  OFFSET(VoxSnappedTriangle, z) OFFSET(VoxSnappedTriangle, material) OFFSET(VoxSnappedTriangle, source)  \
   SIZE(VoxSolidLayout) OFFSET(VoxSolidLayout, dims) OFFSET(VoxSolidLayout, words_x)                       \
   OFFSET(VoxSolidLayout, slice_words)                                                                     \
   SIZE(VoxGridView) OFFSET(VoxGridView, world_to_grid) OFFSET(VoxGridView, dims)                          \

@@ -12,7 +12,7 @@
  * product below 2^26) and the normal axis in 64-bit. Centre mode uses vox_scan_slab.
  * in:  positions (float4), triangles (uint4: indices, material); pass 1 also the ranked occupancy words
  * out: pass 0: occupancy bits, large[] and large_count (the triangles left to the slice path, in any order);
- *      pass 1: the attribute accumulators of the small triangles' voxels
+ *      pass 1: the attribute accumulators of the small triangles' voxels; pass 2: their triangle lists
  * shape: one work item per triangle. */
 #include "vox_scanline.h"
 
@@ -145,7 +145,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
   }
 
   VoxWriter w;
-  vox_writer_init(&w, tri.w, &grid, occ, ranked, acc, material);
+  vox_writer_init(&w, VOX_PASS == 2 ? index : tri.w, &grid, occ, ranked, acc, material);
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
 #if VOX_PASS == 1
   if (grid.channels & VOX_CH_NORMAL)

@@ -2,7 +2,7 @@
  * every triangle checks whether it reaches the slab and, if so, rasterizes all its rows there
  * (vox_scanline.h, the same exact rules as the slice method). Cost grows with slabs x triangles.
  * in:  snapped triangles (vox_setup.cl), the slab k; pass 1 also the ranked occupancy words
- * out: occupancy bits (pass 0) or the attribute accumulators (pass 1)
+ * out: occupancy bits (pass 0), the attribute accumulators (pass 1) or the triangle lists (pass 2)
  * shape: one work item per triangle, one launch per slab. */
 #include "vox_scanline.h"
 
@@ -16,7 +16,9 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_grid(
   const uint tri = get_global_id(0);
   if (tri >= grid.triangle_count) return;
   VoxTri t;
-  const uint material_id = vox_fetch_triangle(&t, snapped, tri);
+  const uint fetched = vox_fetch_triangle(&t, snapped, tri);
+  /* pass 2 lists the triangle's mesh index in place of its material */
+  const uint material_id = VOX_PASS == 2 ? snapped[tri].source : fetched;
   vox_derive(&t, &grid);
   if (!vox_triangle_active(&t) || (int)slab < t.first[2] || (int)slab > t.last[2]) return;
   VoxRule rule;

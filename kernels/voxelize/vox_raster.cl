@@ -3,7 +3,7 @@
  * (vox_scanline.h: exact rules, passes, channels).
  * in:  snapped triangles (vox_setup.cl), copy records and how many (the launch may run past them); pass 1
  *      also the ranked occupancy words
- * out: occupancy bits (pass 0) or the attribute accumulators (pass 1)
+ * out: occupancy bits (pass 0), the attribute accumulators (pass 1) or the triangle lists (pass 2)
  * shape: one work item per copy record. */
 #include "vox_scanline.h"
 
@@ -18,7 +18,9 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
   if (gid >= *copy_count) return;
   const CopyRecord rec = copies[gid];
   VoxTri t;
-  const uint material_id = vox_fetch_triangle(&t, snapped, rec.triangle);
+  const uint fetched = vox_fetch_triangle(&t, snapped, rec.triangle);
+  /* pass 2 lists the triangle's mesh index in place of its material */
+  const uint material_id = VOX_PASS == 2 ? snapped[rec.triangle].source : fetched;
   vox_derive(&t, &grid);
   const int row_first = t.first[1] + (int)(VOXR_CELL_COLUMN(rec.cell) * grid.rows_per_copy);
   const int row_last = min(t.last[1], row_first + (int)grid.rows_per_copy - 1);

@@ -12,7 +12,10 @@
  * VOX_CH_NORMAL: sum, VOX_CH_MATERIAL; a runtime mask, so one program serves every subset) at each voxel's
  * rank. Count and normal sum share two 64-bit accumulators per voxel so a write
  * costs two atomics, not four: acc[2r] += n.x + 2^32 (count in the high half), acc[2r+1] += n.y + n.z*2^32.
- * Two's complement makes the packed sums exact; vox_finalize.cl unpacks them. */
+ * Two's complement makes the packed sums exact; vox_finalize.cl unpacks them.
+ * VOX_PASS 2 (triangle lists, after count -> scan) visits the same (triangle, voxel) pairs as pass 1 and
+ * appends the triangle's mesh index to the voxel's list: `acc` is then a 64-bit cursor per rank, started at
+ * the list's offset, and `material` the id array (VoxGridParams.list_capacity entries). */
 #ifndef VOX_SCANLINE_H
 #define VOX_SCANLINE_H
 
@@ -31,7 +34,7 @@
 #define VOX_CLIP_MARGIN 0.0625f
 
 /* The channel bits VOX_CH_* come from the channel table (host/grid/channel_table.h). */
-#if VOX_PASS == 1 && !defined(VOX_CH_COUNT)
+#if VOX_PASS >= 1 && !defined(VOX_CH_COUNT)
 #error "pass 1 needs the channel defines of host/grid/channel_table.h"
 #endif
 
@@ -94,15 +97,16 @@ inline void vox_cells(float lo, float hi, float pad, int* first, int* last) {
 typedef struct VoxWriter {
   __global uint* occ;
   __global const ulong* ranked; /* pass 1: the rank index (voxr_layout.h VOXR_RANKED) */
-  __global long* acc;
-  __global uint* material;
-  ulong word;        /* pass 0: the word being collected; pass 1: the word of word_ranked */
+  __global long* acc;     /* pass 2: the list cursors */
+  __global uint* material; /* pass 2: the list ids */
+  ulong word;        /* pass 0: the word being collected; passes 1, 2: the word of word_ranked */
   uint mask;
   ulong word_ranked; /* pass 1: ranked[word] */
   int3 normal; /* pass 1: the triangle's fixed-point unit normal (vox_fixed_normal) */
-  uint material_id;
+  uint material_id; /* pass 2: the triangle's mesh index, the id the lists hold */
   uint channels; /* pass 1: the channels to accumulate */
-  uint entries;  /* pass 1: ranks below it have accumulator and material entries (VoxGridParams.dims[3]) */
+  uint entries;  /* passes 1, 2: ranks below it have accumulator and material entries (VoxGridParams.dims[3]) */
+  uint list_capacity; /* pass 2: entries of the id array */
 } VoxWriter;
 
 inline void vox_flush(VoxWriter* w) {
@@ -130,6 +134,11 @@ inline void vox_emit(VoxWriter* w, ulong linear) {
   }
   const ulong rank = VOXR_RANKED_RANK(w->word_ranked) + popcount(VOXR_RANKED_BITS(w->word_ranked) & (bit - 1u));
   if (rank >= w->entries) return;
+#if VOX_PASS == 2
+  const ulong slot = (ulong)atom_inc(w->acc + rank);
+  if (slot < w->list_capacity) w->material[slot] = w->material_id;
+  return;
+#endif
   if (w->channels & (VOX_CH_COUNT | VOX_CH_NORMAL)) atom_add(w->acc + 2 * rank, (long)w->normal.x + (1L << 32));
   /* A multiplication, not a shift: shifting a negative value left is undefined in OpenCL C. */
   if (w->channels & VOX_CH_NORMAL)
@@ -219,7 +228,8 @@ inline void vox_rule_init(VoxRule* r, const VoxTri* t, const VoxGridParams* grid
 #endif
 }
 
-/* A writer for one triangle (pass 1 with normals: set w->normal with vox_fixed_normal afterwards). */
+/* A writer for one triangle (pass 1 with normals: set w->normal with vox_fixed_normal afterwards;
+ * pass 2: `material_id` is the triangle's mesh index). */
 inline void vox_writer_init(VoxWriter* w, uint material_id, const VoxGridParams* grid, __global uint* occ,
                             __global const ulong* ranked, __global long* acc, __global uint* material) {
   w->occ = occ;
@@ -231,6 +241,7 @@ inline void vox_writer_init(VoxWriter* w, uint material_id, const VoxGridParams*
   w->material_id = material_id;
   w->channels = grid->channels;
   w->entries = grid->dims[3];
+  w->list_capacity = grid->list_capacity;
   w->normal = (int3)(0);
 }
 

@@ -3,8 +3,8 @@
  * in:  positions (float4), triangles (uint4: indices, material); with VOX_SETUP_LIST, entry e is triangle
  *      list[e] (the large triangles vox_direct.cl leaves to this path) for e < *listed (the launch may run
  *      past the list: later entries count no copies), else triangle e
- * out: snapped[e] (what the later stages read instead of the mesh), copy_counts[e], copy_boxes[e] (cells:
- *      block of rows across, slab down; util/expand_copies.cl);
+ * out: snapped[e] (what the later stages read instead of the mesh, and its mesh index), copy_counts[e],
+ *      copy_boxes[e] (cells: block of rows across, slab down; util/expand_copies.cl);
  *      too_large counts triangles the host should have split (must stay 0).
  * shape: one work item per entry (grid.triangle_count entries). */
 #include "voxr_layout.h"
@@ -28,7 +28,9 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_setup(
     return;
   }
   VoxTri tri;
-  vox_prepare_triangle(&tri, &grid, positions, triangles[VOX_SETUP_LIST ? list[e] : e], snapped, e);
+  const uint source = VOX_SETUP_LIST ? list[e] : e;
+  vox_prepare_triangle(&tri, &grid, positions, triangles[source], snapped, e);
+  snapped[e].source = source;
   uint count = 0;
   CopyBox box = {0, 0};
   if (vox_triangle_active(&tri)) {
