@@ -251,6 +251,34 @@ TEST(ExactShadowRays, ReceiverUnderAGlassBoxStandingOnTheFloor) {
   }
 }
 
+// A point light inside the glass box: the ray goes on past the light to count the crossings beyond it, so a
+// receiver beside the box starts outside (attenuated from where it enters to the light) and one under the box
+// inside (attenuated all the way).
+TEST(ExactShadowRays, PointLightInsideGlass) {
+  const glm::vec3 sigma(0.5f, 1.0f, 2.0f);
+  TriangleSoup soup;
+  test::add_square(soup, 0.0f, -3.0f, 3.0f, 0);  // triangles 0, 1
+  soup.append(test::box_soup(glm::vec3(-0.5f, 0.0f, -0.5f), glm::vec3(0.5f, 1.0f, 0.5f)), glm::mat4(1.0f), 1);
+  ExactRays rays(std::move(soup), {opaque(), glass(sigma)});
+  const glm::vec3 light_at(0.0f, 0.5f, 0.0f);
+  const RenderLight light = test::point_light(light_at);
+  const std::vector<glm::vec3> points = {{2.0f, 0.0f, 0.0f}, {0.2f, 0.0f, 0.1f}};
+  const std::vector<uint32_t> selves = {0, 0};
+  // Beside: enters through the face x = 0.5 a quarter of the way from the light; under: inside all along.
+  const std::vector<float> inside = {0.25f * glm::length(light_at - points[0]),
+                                     glm::length(light_at - points[1])};
+  for (uint32_t res : {64u, 256u}) {
+    const std::vector<glm::vec3> t = rays.exact(light, points, selves, res);
+    for (size_t i = 0; i < points.size(); ++i) {
+      const glm::vec3 r = rays.reference(light, points[i], selves[i]);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(t[i][c], std::exp(-sigma[c] * inside[i]), 1e-5f) << "receiver " << i << " res " << res;
+        EXPECT_NEAR(t[i][c], r[c], 1e-5f) << "receiver " << i << " res " << res;
+      }
+    }
+  }
+}
+
 // A sheet fan (8 triangles round one centre vertex, vertices shared) above a floor, the light straight down:
 // rays through the centre vertex, through shared edges and through faces each cross the sheet once
 // (transmittance t, not t^2 or t^8).
