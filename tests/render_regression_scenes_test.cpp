@@ -123,6 +123,12 @@ TEST(RefractionImages, VoxelTwoAndImageSpace) {
                                       "ball_figure_image_space", {0.005, 0.05, 0.005}));
 }
 
+// voxel-exact at a coarse grid: the exact triangles, so the image is the matched reference's.
+TEST(RefractionImages, VoxelExact) {
+  EXPECT_TRUE(test::matches_reference(render_refraction(RefractionMethod::kVoxelExact, 32),
+                                      "ball_figure_exact", {0.005, 0.05, 0.005}));
+}
+
 TEST(RefractionImages, DistanceMapsAndNone) {
   EXPECT_TRUE(test::matches_reference(render_refraction(RefractionMethod::kDistanceMaps),
                                       "ball_figure_distance_maps", {0.005, 0.05, 0.005}));

@@ -159,7 +159,8 @@ INSTANTIATE_TEST_SUITE_P(EveryRow, ShadowContract, ::testing::ValuesIn(kShadowTe
 
 bool has_refraction_structure(RefractionMethod m) {
   return m == RefractionMethod::kVoxelMulti || m == RefractionMethod::kVoxelTwo ||
-         m == RefractionMethod::kImageSpace || m == RefractionMethod::kDistanceMaps;
+         m == RefractionMethod::kVoxelExact || m == RefractionMethod::kImageSpace ||
+         m == RefractionMethod::kDistanceMaps;
 }
 
 class RefractionContract : public ::testing::TestWithParam<RefractionTechniqueRow> {

@@ -12,6 +12,7 @@ namespace voxr {
 enum class RefractionMethod {
   kVoxelMulti,
   kVoxelTwo,
+  kVoxelExact,
   kImageSpace,
   kDistanceMaps,
   kReference,
@@ -26,11 +27,13 @@ enum class StepRule { kPapers, kDda };
 enum class NormalKind { kVoxel, kSmooth };
 
 using RefractionMethodInfo = NamedValue<RefractionMethod>;
-inline constexpr std::array<RefractionMethodInfo, 7> kRefractionMethods = {{
+inline constexpr std::array<RefractionMethodInfo, 8> kRefractionMethods = {{
     {RefractionMethod::kVoxelMulti, "voxel-multi",
      "Chang & Lai PG 2011: Snell-law marching through the voxels, refracting at every boundary"},
     {RefractionMethod::kVoxelTwo, "voxel-two",
      "Chang & Lai TR 1688: exact front surface, back surface found by marching, two refractions"},
+    {RefractionMethod::kVoxelExact, "voxel-exact",
+     "beyond the papers: the matched path on the exact triangles listed per voxel, rebuilt every frame"},
     {RefractionMethod::kImageSpace, "image-space",
      "Wyman 2005: front/back depth and normal buffers, d_V/d_N distance, nearby geometry by iteration"},
     {RefractionMethod::kDistanceMaps, "distance-maps",
@@ -72,7 +75,8 @@ inline bool is_reference_refraction(RefractionMethod m) {
 
 struct RefractionOptions {
   RefractionMethod method = RefractionMethod::kNone;
-  uint32_t resolution = 256;  // voxel methods: voxels along the scene's longest side
+  uint32_t resolution = 256;  // voxel methods: voxels along the scene's longest side (voxel-exact: of the
+                              // triangle lists' grid, a speed knob only)
   // The papers' step and smooth normals: the most accurate voxel-multi on average over the refraction scenes
   // and faster than the DDA (bench/results/refraction-pocl-2core.md: the DDA visits every voxel a ray clips
   // of a surface's conservative shell and refracts early or twice).

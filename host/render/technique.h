@@ -182,6 +182,7 @@ std::unique_ptr<ShadowTechnique> make_reference_shadows(ClRuntime& cl, Voxelizer
 std::unique_ptr<ShadowTechnique> make_no_shadows(ClRuntime& cl, Voxelizer& voxelizer);
 std::unique_ptr<RefractionTechnique> make_voxel_refraction(ClRuntime& cl,
                                                            Voxelizer& voxelizer);  // voxel-multi, voxel-two
+std::unique_ptr<RefractionTechnique> make_voxel_exact_refraction(ClRuntime& cl, Voxelizer& voxelizer);
 std::unique_ptr<RefractionTechnique> make_image_space_refraction(ClRuntime& cl, Voxelizer& voxelizer);
 std::unique_ptr<RefractionTechnique> make_distance_map_refraction(ClRuntime& cl, Voxelizer& voxelizer);
 std::unique_ptr<RefractionTechnique> make_reference_refraction(
@@ -197,9 +198,10 @@ inline constexpr std::array<ShadowTechniqueRow, 7> kShadowTechniques = {{
     {ShadowMethod::kReference, make_reference_shadows},
     {ShadowMethod::kNone, make_no_shadows},
 }};
-inline constexpr std::array<RefractionTechniqueRow, 7> kRefractionTechniques = {{
+inline constexpr std::array<RefractionTechniqueRow, 8> kRefractionTechniques = {{
     {RefractionMethod::kVoxelMulti, make_voxel_refraction},
     {RefractionMethod::kVoxelTwo, make_voxel_refraction},
+    {RefractionMethod::kVoxelExact, make_voxel_exact_refraction},
     {RefractionMethod::kImageSpace, make_image_space_refraction},
     {RefractionMethod::kDistanceMaps, make_distance_map_refraction},
     {RefractionMethod::kReference, make_reference_refraction},

@@ -13,9 +13,25 @@ void TriangleGridArgs::set_kernel_args(cl::Kernel& kernel, cl_uint& index) const
   kernel.setArg(index++, capacity);
   kernel.setArg(index++, *positions);
   kernel.setArg(index++, *triangles);
+  kernel.setArg(index++, *bricks);
+  kernel.setArg(index++, brick_dims);
 }
 
 TriangleGrid::TriangleGrid(ClRuntime& cl, Voxelizer& voxelizer) : cl_(cl), voxelizer_(voxelizer) {}
+
+namespace {
+
+constexpr size_t kGroup = 64;
+
+Defines brick_defines() {
+  return {{"WG_SIZE", std::to_string(kGroup)}};
+}
+
+}  // namespace
+
+std::vector<ProgramSpec> TriangleGrid::programs() {
+  return {{"triangle_bricks.cl", brick_defines()}};
+}
 
 VoxelizeOptions TriangleGrid::voxelize_options() {
   VoxelizeOptions v;
@@ -38,6 +54,16 @@ void TriangleGrid::build(const DeviceMesh& mesh, uint32_t resolution) {
   const GridSpec spec = fit_grid(mesh.bounds(), request, mesh.anchor());
   mesh_ = &mesh;
   voxelizer_.run(mesh, spec, voxelize_options(), grid_);
+
+  for (int a = 0; a < 3; ++a) brick_dims_[a] = (spec.dims[a] + VOXR_BRICK - 1) / VOXR_BRICK;
+  brick_words_ = (uint64_t(brick_dims_.x) * brick_dims_.y * brick_dims_.z + 31) / 32;
+  cl::Buffer& bricks = bricks_.ensure(cl_, brick_words_ * 4, "triangle list bricks");
+  cl_.fill_zero(bricks, brick_words_ * 4, "clear");
+  cl::Kernel kernel = cl_.kernel("triangle_bricks.cl", "triangle_bricks", brick_defines());
+  const cl_uint4 dims = {{spec.dims.x, spec.dims.y, spec.dims.z, 0}};
+  const cl_uint4 bdims = {{brick_dims_.x, brick_dims_.y, brick_dims_.z, 0}};
+  cl_.launch("lists", kernel, grid_.words(), kGroup, grid_.occ.buffer, cl_ulong(grid_.words()), dims, bdims,
+             bricks);
 }
 
 const DeviceMesh& TriangleGrid::mesh() const {
@@ -54,6 +80,8 @@ TriangleGridArgs TriangleGrid::view_args() {
   a.capacity = grid_.list_capacity;
   a.positions = &mesh_->positions();
   a.triangles = &mesh_->triangles();
+  a.bricks = &bricks_.buffer;
+  a.brick_dims = {{brick_dims_.x, brick_dims_.y, brick_dims_.z, 0}};
   return a;
 }
 

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <vector>
 
 #include "cl/cl_runtime.h"
 #include "grid/device_voxel_grid.h"
@@ -25,7 +26,8 @@ namespace voxr {
 
 // The arguments of a kernel's VOXR_TRIANGLE_GRID_PARAMS (kernels/common/triangle_grid.h), for
 // ClRuntime::launch: the grid view, the list offsets (voxels_set + 1 ulong) and ids (uint, `capacity`
-// entries), the mesh's positions (float4, anchor-relative world) and triangles (uint4: indices, material).
+// entries), the mesh's positions (float4, anchor-relative world) and triangles (uint4: indices, material),
+// and the empty-space bits (one per VOXR_BRICK^3 voxels, brick_dims per axis, x fastest).
 struct TriangleGridArgs {
   GridViewArgs grid;
   const cl::Buffer* offsets = nullptr;
@@ -33,6 +35,8 @@ struct TriangleGridArgs {
   cl_ulong capacity = 0;
   const cl::Buffer* positions = nullptr;
   const cl::Buffer* triangles = nullptr;
+  const cl::Buffer* bricks = nullptr;
+  cl_uint4 brick_dims{};
   void set_kernel_args(cl::Kernel& kernel, cl_uint& index) const;
 };
 
@@ -44,6 +48,8 @@ class TriangleGrid {
   // What build() asks the voxelizer for: hybrid, conservative, occ + count, triangle lists. Build its
   // programs with Voxelizer::prepare(voxelize_options()).
   static VoxelizeOptions voxelize_options();
+  // The programs build() runs besides the voxelizer's (the empty-space bits).
+  static std::vector<ProgramSpec> programs();
 
   // The lists of `mesh` (which must stay alive while they are used) on a grid fitted to mesh.bounds(),
   // `resolution` voxels along the longest side, on the device. While counts are deferred (a frame) nothing
@@ -56,8 +62,8 @@ class TriangleGrid {
   const DeviceVoxelGrid& grid() const { return grid_; }
   DeviceVoxelGrid& grid() { return grid_; }  // e.g. to read it back (read_back)
   const DeviceMesh& mesh() const;            // the mesh of the last build; InternalError before one
-  // Device memory of the grid and its lists (not the mesh).
-  uint64_t device_bytes() const { return grid_.device_bytes(); }
+  // Device memory of the grid, its lists and the empty-space bits (not the mesh).
+  uint64_t device_bytes() const { return grid_.device_bytes() + brick_words_ * 4; }
   // The kernel arguments of VOXR_TRIANGLE_GRID_PARAMS after build(). Throws InternalError before one.
   TriangleGridArgs view_args();
 
@@ -66,6 +72,9 @@ class TriangleGrid {
   Voxelizer& voxelizer_;
   DeviceVoxelGrid grid_;
   const DeviceMesh* mesh_ = nullptr;
+  GrowingBuffer bricks_;  // one bit per VOXR_BRICK^3 voxels: set where one is occupied
+  glm::uvec3 brick_dims_{0};
+  uint64_t brick_words_ = 0;
 };
 
 class TriangleGrids {

@@ -23,10 +23,11 @@
 
 #define VOXR_TRIANGLE_GRID_PARAMS                                                                        \
   VOXR_GRID_VIEW_PARAMS, __global const ulong *tg_buf_offsets, __global const uint *tg_buf_ids,          \
-      ulong tg_list_capacity, __global const float4 *tg_buf_positions, __global const uint4 *tg_buf_triangles
+      ulong tg_list_capacity, __global const float4 *tg_buf_positions, __global const uint4 *tg_buf_triangles, \
+      __global const uint *tg_buf_bricks, uint4 tg_brick_dims
 #define VOXR_TRIANGLE_GRID()                                                                   \
   tg_make(&gv_params, VOXR_GRID_VIEW(), tg_buf_offsets, tg_buf_ids, tg_list_capacity, tg_buf_positions, \
-          tg_buf_triangles)
+          tg_buf_triangles, tg_buf_bricks, tg_brick_dims)
 
 typedef struct TriangleGridView {
   GridView grid;
@@ -36,11 +37,13 @@ typedef struct TriangleGridView {
   ulong capacity;
   __global const float4* positions;
   __global const uint4* triangles;
+  __global const uint* bricks; /* one bit per VOXR_BRICK^3 voxels, set where one is occupied */
+  uint brick_x, brick_y;       /* bricks along x and y */
 } TriangleGridView;
 
 inline TriangleGridView tg_make(const VoxGridView* p, GridView grid, __global const ulong* offsets,
                                 __global const uint* ids, ulong capacity, __global const float4* positions,
-                                __global const uint4* triangles) {
+                                __global const uint4* triangles, __global const uint* bricks, uint4 brick_dims) {
   TriangleGridView tg;
   tg.grid = grid;
   const float* m = p->world_to_grid;
@@ -50,6 +53,9 @@ inline TriangleGridView tg_make(const VoxGridView* p, GridView grid, __global co
   tg.capacity = capacity;
   tg.positions = positions;
   tg.triangles = triangles;
+  tg.bricks = bricks;
+  tg.brick_x = brick_dims.x;
+  tg.brick_y = brick_dims.y;
   return tg;
 }
 
@@ -114,6 +120,40 @@ inline int tg_intersect(const TgRay* r, float3 a, float3 b, float3 c, float t_mi
   return 1;
 }
 
+/* ---- empty space ---------------------------------------------------------------------------------- */
+
+inline int tg_brick_empty(const TriangleGridView* tg, int i, int j, int k) {
+  const ulong b = ((ulong)(k / VOXR_BRICK) * tg->brick_y + (uint)(j / VOXR_BRICK)) * tg->brick_x +
+                  (uint)(i / VOXR_BRICK);
+  return ((tg->bricks[b >> 5] >> (uint)(b & 31)) & 1u) == 0u;
+}
+
+/* In an empty brick, moves the walk to the voxel just past the brick's exit along the ray og + t dg (grid
+ * units; a ten-thousandth of a voxel beyond it, far inside the lists' conservative widening, so no listed
+ * triangle is passed). Returns 0 when that point leaves the grid; the walk is unchanged (and the caller
+ * steps on voxel by voxel) when rounding keeps the point in the same brick. */
+inline int tg_skip_brick(GvRay* walk, const GridView* g, float3 og, float3 dg) {
+  const int bi = walk->i / VOXR_BRICK * VOXR_BRICK, bj = walk->j / VOXR_BRICK * VOXR_BRICK;
+  const int bk = walk->k / VOXR_BRICK * VOXR_BRICK;
+  float t = INFINITY;
+  if (walk->si != 0) t = fmin(t, ((float)(walk->si > 0 ? bi + VOXR_BRICK : bi) - og.x) / dg.x);
+  if (walk->sj != 0) t = fmin(t, ((float)(walk->sj > 0 ? bj + VOXR_BRICK : bj) - og.y) / dg.y);
+  if (walk->sk != 0) t = fmin(t, ((float)(walk->sk > 0 ? bk + VOXR_BRICK : bk) - og.z) / dg.z);
+  t += 1.0e-4f / length(dg);
+  if (!(t > walk->t)) return 1;
+  const float3 p = og + t * dg;
+  const int i = (int)floor(p.x), j = (int)floor(p.y), k = (int)floor(p.z);
+  if (!gv_contains(g, i, j, k)) return 0;
+  if (i / VOXR_BRICK * VOXR_BRICK == bi && j / VOXR_BRICK * VOXR_BRICK == bj && k / VOXR_BRICK * VOXR_BRICK == bk)
+    return 1;
+  walk->i = i;
+  walk->j = j;
+  walk->k = k;
+  gv_ray_steps(walk, og, dg, (float3)(1.0f) / dg);
+  walk->t = t;
+  return 2;
+}
+
 /* ---- nearest hit through the lists ----------------------------------------------------------------- */
 
 typedef struct TgHit {
@@ -124,25 +164,39 @@ typedef struct TgHit {
   int opaque;     /* its material is opaque */
 } TgHit;
 
-/* Whether hit c beats the best so far: nearer by more than `coincide`; within it, an opaque surface before
- * a dielectric or sheet, then the lower triangle id (the reference's rule where surfaces touch). */
+/* Whether hit c beats the best so far: nearer by more than `coincide`; within it (coincident surfaces, e.g. a
+ * glass face standing on a floor, which rounding orders either way) an opaque surface before a dielectric or
+ * sheet, of two opaque ones the nearer, then the lower id, and of dielectrics and sheets the lower id: the
+ * reference's rule where surfaces touch (ReferenceScene::intersect). */
 inline int tg_better(const TgHit* c, const TgHit* best, float coincide) {
   if (best->triangle == VOXR_NO_TRIANGLE) return 1;
   if (c->t < best->t - coincide) return 1;
   if (c->t > best->t + coincide) return 0;
   if (c->opaque != best->opaque) return c->opaque > best->opaque;
+  if (c->opaque && c->t != best->t) return c->t < best->t;
   return c->triangle < best->triangle;
 }
 
-/* The nearest hit of origin + t dir, t in [t_min, t_max], over the triangles the grid lists, skipping
- * triangle `skip` (the surface a ray leaves: no distance epsilon; VOXR_NO_TRIANGLE skips none). The grid is
- * walked voxel by voxel (gv_ray_*); each occupied voxel's triangles are tested (tg_intersect), and the
- * march ends at the first voxel whose exit lies beyond the best hit so far (plus a thousandth of a voxel):
- * conservative lists hold every triangle touching a voxel, so no nearer hit can lie further on. Hits within
- * `coincide` (t units) of each other are ordered by tg_better. materials: RenderMaterial by material id.
- * Returns whether a hit was found (*hit; hit->triangle is VOXR_NO_TRIANGLE otherwise). */
-inline int tg_nearest_hit(const TriangleGridView* tg, float3 origin, float3 dir, float t_min, float t_max,
-                          uint skip, __global const RenderMaterial* materials, float coincide, TgHit* hit) {
+/* Whether triangle `a` shares a vertex index with `b`. */
+inline int tg_shares_vertex(uint4 a, uint4 b) {
+  return a.x == b.x || a.x == b.y || a.x == b.z || a.y == b.x || a.y == b.y || a.y == b.z || a.z == b.x ||
+         a.z == b.y || a.z == b.z;
+}
+
+/* The nearest hit of origin + t dir, t in [t_min, t_max], over the triangles the grid lists, for a ray
+ * leaving the triangles leaving[0 .. leaving_count) (the surface it left and coincident ones it passed
+ * there; at most 8): those are skipped at any t, and triangles sharing a vertex with one of them are skipped
+ * below t = `neighbour_t` (the same surface at a shared edge or vertex, which a rounded origin may lie a
+ * hair beyond). The grid is walked voxel by voxel (gv_ray_*) from the origin; each occupied voxel's
+ * triangles are tested (tg_intersect), and the march ends at the first voxel whose exit lies beyond the best
+ * hit so far (plus `coincide` and a thousandth of a voxel): conservative lists hold every triangle that
+ * touches a voxel, so no nearer hit can lie further on (a hit behind the origin, t_min < 0, lies on a
+ * triangle touching the first voxel). Hits within `coincide` (t units) of each other are ordered by
+ * tg_better. materials: RenderMaterial by material id. Returns whether a hit was found (*hit; its triangle
+ * is VOXR_NO_TRIANGLE otherwise). */
+inline int tg_nearest_hit_leaving(const TriangleGridView* tg, float3 origin, float3 dir, float t_min,
+                                  float t_max, const uint* leaving, uint leaving_count, float neighbour_t,
+                                  __global const RenderMaterial* materials, float coincide, TgHit* hit) {
   hit->triangle = VOXR_NO_TRIANGLE;
   hit->t = INFINITY;
   hit->b1 = hit->b2 = 0.0f;
@@ -161,19 +215,33 @@ inline int tg_nearest_hit(const TriangleGridView* tg, float3 origin, float3 dir,
   for (uint step = 0; step < max_steps; ++step) {
     if (walk.t > t_max) break;
     const ulong v = gv_linear(&tg->grid, walk.i, walk.j, walk.k);
-    if (gv_occupied(&tg->grid, v)) {
+    if (!gv_occupied(&tg->grid, v)) {
+      if (hit->triangle == VOXR_NO_TRIANGLE && tg_brick_empty(tg, walk.i, walk.j, walk.k)) {
+        const int skipped = tg_skip_brick(&walk, &tg->grid, og, dg);
+        if (skipped == 0) break;
+        if (skipped == 2) continue;
+      }
+    } else {
       const uint rank = gv_rank(&tg->grid, v);
       if (rank < tg->grid.voxels_set) {
         const ulong first = tg->offsets[rank], end = tg->offsets[rank + 1];
         if (end <= tg->capacity) {
           for (ulong e = first; e < end; ++e) {
             const uint id = tg->ids[e];
-            if (id == skip) continue;
+            int left = 0;
+            for (uint l = 0; l < leaving_count; ++l) left |= id == leaving[l];
+            if (left) continue;
             const uint4 tri = tg->triangles[id];
             TgHit c;
             if (!tg_intersect(&ray, tg->positions[tri.x].xyz, tg->positions[tri.y].xyz,
                               tg->positions[tri.z].xyz, t_min, t_max, &c.t, &c.b1, &c.b2))
               continue;
+            if (c.t < neighbour_t) {
+              int neighbour = 0;
+              for (uint l = 0; l < leaving_count; ++l)
+                neighbour |= tg_shares_vertex(tri, tg->triangles[leaving[l]]);
+              if (neighbour) continue;
+            }
             c.triangle = id;
             c.material = tri.w;
             c.opaque = materials[tri.w].kind == VOXR_MATERIAL_OPAQUE;
@@ -187,6 +255,15 @@ inline int tg_nearest_hit(const TriangleGridView* tg, float3 origin, float3 dir,
     if (gv_ray_step(&walk, &tg->grid) < 0) break;
   }
   return hit->triangle != VOXR_NO_TRIANGLE;
+}
+
+/* tg_nearest_hit_leaving for a ray that leaves one triangle, `skip` (VOXR_NO_TRIANGLE: none), skipped at
+ * any t and nothing else: no distance epsilon. */
+inline int tg_nearest_hit(const TriangleGridView* tg, float3 origin, float3 dir, float t_min, float t_max,
+                          uint skip, __global const RenderMaterial* materials, float coincide, TgHit* hit) {
+  const uint leaving[1] = {skip};
+  return tg_nearest_hit_leaving(tg, origin, dir, t_min, t_max, leaving, skip != VOXR_NO_TRIANGLE ? 1u : 0u,
+                                -INFINITY, materials, coincide, hit);
 }
 
 #endif

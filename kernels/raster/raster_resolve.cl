@@ -1,14 +1,11 @@
 /* raster_resolve.cl — what the camera sees at each pixel (voxr_layout.h SurfaceSample), from the visibility
  * buffer (raster_depth.cl): the pixel-centre ray of the camera (CameraFrame::ray_direction) intersected with
  * the plane of the pixel's triangle gives the exact position and distance, the barycentrics (of vertices 1
- * and 2, clamped to the triangle: snapping lets a covered centre lie a hair outside it), the geometric normal
- * and the shading normal interpolated from the vertex normals, each vertex normal more than 45 degrees
- * (VOXR_CREASE_COS) off the triangle's own normal replaced by that normal (the crease rule), and the result
- * replaced by the geometric normal if it still turns more than 45 degrees from it. Both are then turned
- * towards the eye (the shading normal with the geometric one's flip; if it
- * still faces away it is replaced by the geometric normal). Pixels without a triangle get VOXR_NO_TRIANGLE
- * and zeros. in: camera, visibility words, positions (float4), triangles (uint4), vertex normals (float4, xyz
- * unit) out: samples[y * width + x] shape: one work item per pixel. */
+ * and 2, clamped to the triangle: snapping lets a covered centre lie a hair outside it), and the geometric
+ * and shading normals turned towards the eye (surface_normal.h: the crease and side rules). Pixels without a
+ * triangle get VOXR_NO_TRIANGLE and zeros. in: camera, visibility words, positions (float4), triangles
+ * (uint4), vertex normals (float4, xyz unit) out: samples[y * width + x] shape: one work item per pixel. */
+#include "surface_normal.h"
 #include "voxr_layout.h"
 
 #pragma OPENCL FP_CONTRACT OFF
@@ -76,26 +73,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void raster_resolv
     u /= s;
     v /= s;
   }
-  const float w = 1.0f - u - v;
-
-  float3 ng = cross(e1, e2);
-  const float ng_length = length(ng);
-  ng = ng_length > 0.0f ? ng / ng_length : -dir;
-  /* The crease rule, per corner: a vertex normal more than 45 degrees off this face smooths over a crease
-   * and the face's own normal stands in for it (a box's corner normals are 54.7 degrees off each face). */
-  float3 n0 = normals[tri.x].xyz, n1 = normals[tri.y].xyz, n2 = normals[tri.z].xyz;
-  if (dot(n0, ng) < VOXR_CREASE_COS) n0 = ng;
-  if (dot(n1, ng) < VOXR_CREASE_COS) n1 = ng;
-  if (dot(n2, ng) < VOXR_CREASE_COS) n2 = ng;
-  float3 ns = w * n0 + u * n1 + v * n2;
-  const float ns_length = length(ns);
-  ns = ns_length > 0.0f ? ns / ns_length : ng;
-  if (dot(ns, ng) < VOXR_CREASE_COS) ns = ng;
-  if (dot(ng, dir) > 0.0f) {
-    ng = -ng;
-    ns = -ns;
-  }
-  if (dot(ns, dir) > 0.0f) ns = ng;
+  float3 ns, ng;
+  sn_normals(p0, p1, p2, normals[tri.x].xyz, normals[tri.y].xyz, normals[tri.z].xyz, u, v, dir, &ns, &ng);
 
   out->position[0] = position.x;
   out->position[1] = position.y;

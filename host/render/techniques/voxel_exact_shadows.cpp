@@ -29,7 +29,9 @@ class VoxelExactShadows final : public ShadowTechnique {
   VoxelExactShadows(ClRuntime& cl, Voxelizer& voxelizer) : cl_(cl), voxelizer_(voxelizer) {}
 
   std::vector<ProgramSpec> programs(const RenderOptions&) const override {
-    return {{"shadow_exact.cl", defines()}};
+    std::vector<ProgramSpec> specs = TriangleGrid::programs();
+    specs.push_back({"shadow_exact.cl", defines()});
+    return specs;
   }
   void prepare(const RenderOptions&) override { voxelizer_.prepare(TriangleGrid::voxelize_options()); }
 
