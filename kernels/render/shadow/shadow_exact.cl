@@ -4,12 +4,12 @@
  *
  * Per sample with a triangle (a dielectric sample, shaded flat, and one without a triangle get 1): the ray
  * from the sample's position towards the light (a point light's position, or against a directional light's
- * direction) is marched voxel by voxel (3-D DDA) to the grid's exit — past a point light too, where only the
- * dielectrics' crossings count (their parity says whether the receiver lies inside one). In each occupied
- * voxel every listed triangle but the receiver's own is intersected (watertight test); a hit is kept beyond
- * VOXR_SHADOW_START_EPSILON x `scene_size` (shadow_tolerances.h: the reference's kStartEpsilon) and within
- * the voxel's [t_enter, t_exit] widened by VOXR_EXACT_SHADOW_TOLERANCE voxels (a triangle listed in two
- * voxels is kept once).
+ * direction) is marched voxel by voxel (3-D DDA; empty 8^3 bricks in one step) to the grid's exit — past a
+ * point light too, where only the dielectrics' crossings count (their parity says whether the receiver lies
+ * inside one). In each occupied voxel every listed triangle but the receiver's own is intersected (watertight
+ * test); a hit is kept beyond VOXR_SHADOW_START_EPSILON x `scene_size` (shadow_tolerances.h: the reference's
+ * kStartEpsilon) and within the voxel's [t_enter, t_exit] widened by VOXR_EXACT_SHADOW_TOLERANCE voxels (a
+ * triangle listed in two voxels is kept once).
  *
  * Hits are grouped as the reference groups them: hits less than `merge` = VOXR_SHADOW_MERGE_DISTANCE x
  * `scene_size` apart on triangles sharing a vertex index, transitively, are one meeting of the ray with one
@@ -276,7 +276,14 @@ inline float3 sx_trace(const TriangleGridView* tg, const SxScene* sc, float3 p, 
     for (uint step = 0; step < max_steps; ++step) {
       const float t_next = fmin(fmin(walk.tx, walk.ty), fmin(walk.tz, walk.t_exit));
       const ulong v = gv_linear(&tg->grid, walk.i, walk.j, walk.k);
-      const uint rank = gv_occupied(&tg->grid, v) ? gv_rank(&tg->grid, v) : tg->grid.voxels_set;
+      const int occupied = gv_occupied(&tg->grid, v);
+      if (!occupied && tg_brick_empty(tg, walk.i, walk.j, walk.k)) {
+        /* Nothing is listed in the brick: on past its exit in one step. */
+        const int skipped = tg_skip_brick(&walk, &tg->grid, o, d);
+        if (skipped == 0) break;
+        if (skipped == 2) continue;
+      }
+      const uint rank = occupied ? gv_rank(&tg->grid, v) : tg->grid.voxels_set;
       if (rank < tg->grid.voxels_set && tg->offsets[rank + 1] <= tg->capacity) {
         for (ulong e = tg->offsets[rank]; e < tg->offsets[rank + 1]; ++e) {
           const uint id = tg->ids[e];
