@@ -76,11 +76,6 @@ typedef struct SxState {
   uint hit_triangle[VOXR_EXACT_SHADOW_WINDOW];
 } SxState;
 
-inline int sx_shares_vertex(uint4 a, uint4 b) {
-  return a.x == b.x || a.x == b.y || a.x == b.z || a.y == b.x || a.y == b.y || a.y == b.z || a.z == b.x ||
-         a.z == b.y || a.z == b.z;
-}
-
 inline float3 sx_position(const SxScene* sc, uint vertex) {
   return sc->positions[vertex].xyz;
 }
@@ -179,7 +174,7 @@ inline void sx_close(SxState* st, const SxScene* sc, float bound, int force) {
         if (member[j]) continue;
         for (uint i = 0; i < st->open && !member[j]; ++i)
           if (member[i] && fabs(st->hit_t[j] - st->hit_t[i]) < sc->merge &&
-              sx_shares_vertex(tri[i], tri[j])) {
+              tg_shares_vertex(tri[i], tri[j])) {
             member[j] = 1;
             last = fmax(last, st->hit_t[j]);
             changed = 1;
@@ -217,8 +212,8 @@ inline void sx_close(SxState* st, const SxScene* sc, float bound, int force) {
   }
 }
 
-/* Keeps hit (t, triangle) unless the triangle is kept already (listed in two voxels), in (t, triangle) order.
- */
+/* Keeps hit (t, triangle), in (t, triangle) order, unless the triangle is kept already (listed in two
+ * voxels). */
 inline void sx_add(SxState* st, const SxScene* sc, float t, uint triangle) {
   for (uint i = 0; i < st->open; ++i)
     if (st->hit_triangle[i] == triangle) return;
