@@ -88,8 +88,8 @@ TEST(RenderCli, DistanceMapOptionsAreCheckedAndReported) {
 
 TEST(RenderCli, EveryRefractionMethodRendersTheGlassSphere) {
   const std::string scene = std::string(VOXR_SOURCE_DIR) + "/data/scenes/glass-sphere.json";
-  for (const std::string method :
-       {"voxel-multi", "voxel-two", "image-space", "distance-maps", "reference", "reference-full", "none"}) {
+  for (const std::string method : {"voxel-multi", "voxel-two", "voxel-exact", "image-space", "distance-maps",
+                                   "reference", "reference-full", "none"}) {
     const fs::path image = scratch() / ("refract-" + method + ".exr");
     const fs::path report = scratch() / ("refract-" + method + ".json");
     const test::CliResult r = run_voxr("render " + scene +
@@ -100,7 +100,9 @@ TEST(RenderCli, EveryRefractionMethodRendersTheGlassSphere) {
     const nlohmann::json j = nlohmann::json::parse(test::slurp(report));
     EXPECT_EQ(j["refraction"], method);
     EXPECT_EQ(j["environment"], "checker");
-    EXPECT_EQ(j.contains("refraction_grid"), method == "voxel-multi" || method == "voxel-two") << method;
+    EXPECT_EQ(j.contains("refraction_grid"),
+              method == "voxel-multi" || method == "voxel-two" || method == "voxel-exact")
+        << method;
     const ImageRgba img = read_image(image.string());
     for (const glm::vec4& p : img.pixels)
       ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));

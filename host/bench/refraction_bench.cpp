@@ -45,6 +45,10 @@ MethodCase parse_method_case(const std::string& label) {
     m.grid = false;
     return m;
   }
+  if (label == "voxel-exact") {  // one case per resolution: the grid of its triangle lists
+    m.options.method = RefractionMethod::kVoxelExact;
+    return m;
+  }
   std::string rest;
   if (label.starts_with("voxel-multi")) {
     m.options.method = RefractionMethod::kVoxelMulti;
@@ -95,8 +99,8 @@ CheckedArgs check_args(const RefractionBenchOptions& args) {
 
 const char* const kRefractionBenchMethodHelp =
     "voxel-multi-STEP-NORMALS or voxel-two[-STEP-NORMALS] (STEP: dda or papers, NORMALS: smooth or voxel; "
-    "voxel-two alone is the default papers-smooth), image-space, distance-maps (default layers and layer "
-    "resolution)";
+    "voxel-two alone is the default papers-smooth), voxel-exact, image-space, distance-maps (default layers "
+    "and layer resolution)";
 
 void check_refraction_bench(const RefractionBenchOptions& options) {
   check_args(options);

@@ -41,6 +41,7 @@ struct RefractionBenchOptions {
                                       "voxel-multi-papers-smooth",
                                       "voxel-multi-papers-voxel",
                                       "voxel-two",
+                                      "voxel-exact",
                                       "image-space",
                                       "distance-maps"};
   std::vector<uint32_t> resolutions = {64, 128, 256, 512};

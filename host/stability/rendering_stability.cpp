@@ -175,6 +175,22 @@ constexpr Bound kBounds[] = {
     {"multi-material/touching", "image-space", Measure::kEventMismatch, 0.84, 0.84},  // 0.673, 0.666
     {"multi-material/touching", "distance-maps", Measure::kImageRmse, 0.12, 0.11},  // 0.07382, 0.07291
     {"multi-material/touching", "distance-maps", Measure::kEventMismatch, 0.37, 0.35},  // 0.2451, 0.2331
+    // voxel-exact: requirements, not measurements (issue 19: PSNR >= 40 dB, i.e. image RMSE <= 0.01, and event
+    // mismatch <= 1 % against the matched reference; its TIR is the reference's). Small version measured
+    // 2026-12-02 (image RMSE, event mismatch) in the comments; the full one not yet.
+    {"total-internal-reflection", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 5.737e-06
+    {"total-internal-reflection", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0
+    {"total-internal-reflection", "voxel-exact", Measure::kTirFound, 0.99, 0.99},  // 1
+    {"nested-thin-shells", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 1.195e-05
+    {"nested-thin-shells", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0
+    {"grazing-slab", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 0.003134
+    {"grazing-slab", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0.0006959
+    {"voxel-corners", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 2.727e-07
+    {"voxel-corners", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0
+    {"multi-material/ball-figure", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 4.604e-06
+    {"multi-material/ball-figure", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0
+    {"multi-material/touching", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 0.007103
+    {"multi-material/touching", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0.002901
 };
 // clang-format on
 
