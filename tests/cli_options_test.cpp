@@ -119,8 +119,8 @@ TEST(CliOptions, SharedFlagsRefuseABadValueWithOneMessage) {
             "--shadow-res: Value 2 not in range 3 to 4096"},
            {"--shadows soft",
             {"render", "bench refraction"},
-            "--shadows: unknown shadow method 'soft' (known: voxel, uniform, filter, opaque, reference, "
-            "none)"},
+            "--shadows: unknown shadow method 'soft' (known: voxel, uniform, filter, opaque, voxel-exact, "
+            "reference, none)"},
        }) {
     for (const std::string& command : r.commands) {
       SCOPED_TRACE("voxr " + command + " " + r.value);

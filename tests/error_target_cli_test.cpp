@@ -79,6 +79,7 @@ TEST(ErrorTargetCli, WhatCannotBeChosenIsAOneLineError) {
            {"render --error-target 0.01 --res 64 -o " + out, "leave them out"},
            {"render --error-target 0.01 --refraction reference -o " + out, "has none"},
            {"render --error-target 0.01 --refraction none --shadows reference -o " + out, "there is none"},
+           {"render --error-target 0.01 --refraction none --shadows voxel-exact -o " + out, "there is none"},
            {"voxelize --error-target -1", "--error-target"}}) {
     const test::CliResult r = run_voxr(c.args);
     EXPECT_NE(r.code, 0) << c.args;

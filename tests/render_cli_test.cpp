@@ -19,7 +19,8 @@ using test::run_voxr;
 using test::scratch;
 
 TEST(RenderCli, EveryMethodWritesAnImageAndAReport) {
-  for (const std::string method : {"voxel", "uniform", "filter", "opaque", "reference", "none"}) {
+  for (const std::string method :
+       {"voxel", "uniform", "filter", "opaque", "voxel-exact", "reference", "none"}) {
     const fs::path image = scratch() / ("render-" + method + ".png");
     const fs::path report = scratch() / ("render-" + method + ".json");
     const test::CliResult r = run_voxr("render --size 64x48 --shadow-res 64 --shadows " + method + " -o " +
@@ -31,7 +32,10 @@ TEST(RenderCli, EveryMethodWritesAnImageAndAReport) {
     const nlohmann::json j = nlohmann::json::parse(test::slurp(report));
     EXPECT_EQ(j["shadows"], method);
     EXPECT_GT(j["ms"]["frame"].get<double>(), 0.0);
-    if (method != "reference" && method != "none") {
+    if (method == "voxel-exact") {
+      EXPECT_EQ(j["triangle_grid"]["dims"][0], 64)
+          << "the triangle grid: --shadow-res along the longest side";
+    } else if (method != "reference" && method != "none") {
       EXPECT_TRUE(j.contains("light_grid")) << method;
     }
   }

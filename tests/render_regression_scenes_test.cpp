@@ -48,6 +48,11 @@ TEST(ShadowImages, DefaultSceneVoxelShadows) {
                                       "default_voxel_128", {0.005, 0.05, 0.005}));
 }
 
+TEST(ShadowImages, DefaultSceneVoxelExactShadows) {
+  EXPECT_TRUE(test::matches_reference(render_small(default_scene(), ShadowMethod::kVoxelExact, 128),
+                                      "default_voxel_exact_128", {0.005, 0.05, 0.005}));
+}
+
 TEST(ShadowImages, DefaultSceneBaselines) {
   const Scene scene = default_scene();
   EXPECT_TRUE(test::matches_reference(render_small(scene, ShadowMethod::kUniform, 128), "default_uniform_128",

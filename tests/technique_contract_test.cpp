@@ -99,9 +99,10 @@ Rendered render(const TriangleSoup& soup, const std::vector<Material>& materials
 float umbra_transmittance(ShadowMethod m) {
   return m == ShadowMethod::kNone || m == ShadowMethod::kUniform ? 1.0f : 0.0f;
 }
+// The light-space grids and maps, and voxel-exact's triangle grid.
 bool has_light_structure(ShadowMethod m) {
   return m == ShadowMethod::kVoxel || m == ShadowMethod::kUniform || m == ShadowMethod::kFilter ||
-         m == ShadowMethod::kOpaque;
+         m == ShadowMethod::kOpaque || m == ShadowMethod::kVoxelExact;
 }
 
 class ShadowContract : public ::testing::TestWithParam<ShadowTechniqueRow> {

@@ -124,7 +124,10 @@ ShadowBenchRun measure_shadows(ClRuntime& cl, const ShadowBenchOptions& options,
         row.frame_max = *std::max_element(ms.begin(), ms.end());
         row.error = error.shadows->transmittance;
         row.psnr = error.shadows->psnr;
-        row.light_grid = stats.light.describe();
+        // voxel-exact has no light grid: its triangle grid, --res voxels along the scene's longest side.
+        row.light_grid = o.shadows == ShadowMethod::kVoxelExact
+                             ? fmt::format("triangle grid, {} voxels on the scene's longest side", res)
+                             : stats.light.describe();
         row.device_bytes = stats.device_bytes;
         row.triangles = soup.triangle_count();
         row.load = load_averages()[0];

@@ -28,7 +28,8 @@ struct ShadowBenchOptions {
   std::vector<std::string> scenes = {"default", "data/scenes/shadow-tree.json", "data/scenes/foliage.json",
                                      "data/scenes/glass-floor.json"};
   std::vector<uint32_t> resolutions = {64, 128, 256, 512};
-  std::vector<std::string> methods = {"voxel-center", "voxel-conservative", "uniform", "filter", "opaque"};
+  std::vector<std::string> methods = {"voxel-center", "voxel-conservative", "uniform", "filter",
+                                      "opaque",       "voxel-exact"};
   glm::uvec2 size{640, 480};  // the image
   int repeat = 5;
   int warmup = 1;

@@ -98,7 +98,7 @@ Command add_bench_shadows(CLI::App& bench) {
       ->capture_default_str();
   add_grid_option(*sh, "--res", GridKind::kShadow, shadows->bench.resolutions);
   sh->add_option("--methods", shadows->bench.methods,
-                 "voxel-center, voxel-conservative, uniform, filter, opaque")
+                 "voxel-center, voxel-conservative, uniform, filter, opaque, voxel-exact")
       ->delimiter(',')
       ->capture_default_str();
   add_size_option(*sh, shadows->size)->capture_default_str();

@@ -20,7 +20,8 @@ GridKindInfo grid_kind_info(GridKind kind) {
     case GridKind::kShadow:
       return {kShadowResMin, kShadowResMax,
               "shadow grid of the voxel, uniform, filter and opaque methods: columns along the longer side "
-              "of the light's grid, and as many slabs"};
+              "of the light's grid, and as many slabs; voxel-exact: voxels of its triangle grid along the "
+              "scene's longest side (a speed knob: the result is exact at any)"};
     case GridKind::kRefraction:
       return {kRefractionResMin, kRefractionResMax,
               "voxel refraction grid: voxels along the longest side of the fine grid (--refraction-grid "

@@ -20,8 +20,10 @@ RenderTargetChoice choose_render_grids(FrameRenderer& renderer, const ReferenceS
   const auto start = Clock::now();
   const bool refraction_grid = is_voxel_refraction(options->refraction.method);
   const bool refracting = options->refraction.method != RefractionMethod::kNone;
-  const bool shadow_grid =
-      options->shadows != ShadowMethod::kReference && options->shadows != ShadowMethod::kNone;
+  // voxel-exact's grid changes its speed, not its error (it is exact at any): --shadow-res sets it.
+  const bool shadow_grid = options->shadows != ShadowMethod::kReference &&
+                           options->shadows != ShadowMethod::kNone &&
+                           options->shadows != ShadowMethod::kVoxelExact;
   if (!refraction_grid && !shadow_grid)
     fail(
         "--error-target chooses the grids of voxel refraction and of the shadow method; with --refraction {} "

@@ -16,6 +16,7 @@
 
 #include "core/material.h"
 #include "core/triangle_soup.h"
+#include "shadow_tolerances.h"
 #include "voxr_layout.h"
 
 namespace voxr {
@@ -73,12 +74,12 @@ class ReferenceScene {
   // Hits nearer than kStartEpsilon * scene_size() along a shadow ray are ignored (with those on `self`): a
   // surface point computed by a primary ray lies off its plane by rounding, and would otherwise see its own
   // or a neighbouring coplanar triangle. A surface closer than that to the receiver casts no shadow on it.
-  static constexpr float kStartEpsilon = 1e-5f;
+  static constexpr float kStartEpsilon = VOXR_SHADOW_START_EPSILON;
   // Hits less than kMergeDistance * scene_size() apart along a shadow ray, on triangles that share a vertex
   // index, are one meeting of the ray with one surface (at a shared edge or vertex). The same tolerance says
   // which hits are coincident (intersect) and how near its origin a leaving ray skips the surface it left
   // (intersect_leaving).
-  static constexpr float kMergeDistance = 1e-5f;
+  static constexpr float kMergeDistance = VOXR_SHADOW_MERGE_DISTANCE;
 
   // RGB transmittance from `point` (on triangle `self`, VOXR_NO_TRIANGLE for none) to the light, along the
   // straight segment. Every crossing counts once: a ray through an edge shared by two triangles of one mesh

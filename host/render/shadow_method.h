@@ -15,11 +15,11 @@ namespace voxr {
 inline constexpr float kDefaultShadowBias = 1.5f;
 inline constexpr float kDefaultNormalOffset = 0.25f;
 
-enum class ShadowMethod { kVoxel, kUniform, kFilter, kOpaque, kReference, kNone };
+enum class ShadowMethod { kVoxel, kUniform, kFilter, kOpaque, kVoxelExact, kReference, kNone };
 
 using ShadowMethodInfo = NamedValue<ShadowMethod>;
 
-inline constexpr std::array<ShadowMethodInfo, 6> kShadowMethods = {{
+inline constexpr std::array<ShadowMethodInfo, 7> kShadowMethods = {{
     {ShadowMethod::kVoxel, "voxel",
      "Chang & Lai: per-voxel optical depth from write count and material, prefix along the light"},
     {ShadowMethod::kUniform, "uniform",
@@ -27,6 +27,8 @@ inline constexpr std::array<ShadowMethodInfo, 6> kShadowMethods = {{
     {ShadowMethod::kFilter, "filter",
      "game engines: opaque depth map x light-space product of every transparent surface's transmittance"},
     {ShadowMethod::kOpaque, "opaque", "classic depth shadow map: every caster blocks"},
+    {ShadowMethod::kVoxelExact, "voxel-exact",
+     "beyond the papers: the shadow ray through per-voxel triangle lists, every crossing exact (no map)"},
     {ShadowMethod::kReference, "reference", "exact: Embree shadow rays through every surface (straight)"},
     {ShadowMethod::kNone, "none", "no shadows: every receiver fully lit"},
 }};

@@ -180,6 +180,7 @@ struct RefractionTechniqueRow {
 std::unique_ptr<ShadowTechnique> make_voxel_shadows(ClRuntime& cl, Voxelizer& voxelizer);  // voxel, uniform
 std::unique_ptr<ShadowTechnique> make_light_map_shadows(ClRuntime& cl,
                                                         Voxelizer& voxelizer);  // filter, opaque
+std::unique_ptr<ShadowTechnique> make_voxel_exact_shadows(ClRuntime& cl, Voxelizer& voxelizer);
 std::unique_ptr<ShadowTechnique> make_reference_shadows(ClRuntime& cl, Voxelizer& voxelizer);
 std::unique_ptr<ShadowTechnique> make_no_shadows(ClRuntime& cl, Voxelizer& voxelizer);
 std::unique_ptr<RefractionTechnique> make_voxel_refraction(ClRuntime& cl,
@@ -191,11 +192,12 @@ std::unique_ptr<RefractionTechnique> make_reference_refraction(
     ClRuntime& cl, Voxelizer& voxelizer);  // reference, reference-full
 std::unique_ptr<RefractionTechnique> make_no_refraction(ClRuntime& cl, Voxelizer& voxelizer);
 
-inline constexpr std::array<ShadowTechniqueRow, 6> kShadowTechniques = {{
+inline constexpr std::array<ShadowTechniqueRow, 7> kShadowTechniques = {{
     {ShadowMethod::kVoxel, make_voxel_shadows},
     {ShadowMethod::kUniform, make_voxel_shadows},
     {ShadowMethod::kFilter, make_light_map_shadows},
     {ShadowMethod::kOpaque, make_light_map_shadows},
+    {ShadowMethod::kVoxelExact, make_voxel_exact_shadows},
     {ShadowMethod::kReference, make_reference_shadows},
     {ShadowMethod::kNone, make_no_shadows},
 }};
