@@ -21,11 +21,11 @@
 
 #pragma OPENCL FP_CONTRACT OFF
 
-#define VOXR_TRIANGLE_GRID_PARAMS                                                                        \
-  VOXR_GRID_VIEW_PARAMS, __global const ulong *tg_buf_offsets, __global const uint *tg_buf_ids,          \
-      ulong tg_list_capacity, __global const float4 *tg_buf_positions, __global const uint4 *tg_buf_triangles, \
-      __global const uint *tg_buf_bricks, uint4 tg_brick_dims
-#define VOXR_TRIANGLE_GRID()                                                                   \
+#define VOXR_TRIANGLE_GRID_PARAMS                                                               \
+  VOXR_GRID_VIEW_PARAMS, __global const ulong *tg_buf_offsets, __global const uint *tg_buf_ids, \
+      ulong tg_list_capacity, __global const float4 *tg_buf_positions,                          \
+      __global const uint4 *tg_buf_triangles, __global const uint *tg_buf_bricks, uint4 tg_brick_dims
+#define VOXR_TRIANGLE_GRID()                                                                            \
   tg_make(&gv_params, VOXR_GRID_VIEW(), tg_buf_offsets, tg_buf_ids, tg_list_capacity, tg_buf_positions, \
           tg_buf_triangles, tg_buf_bricks, tg_brick_dims)
 
@@ -43,7 +43,8 @@ typedef struct TriangleGridView {
 
 inline TriangleGridView tg_make(const VoxGridView* p, GridView grid, __global const ulong* offsets,
                                 __global const uint* ids, ulong capacity, __global const float4* positions,
-                                __global const uint4* triangles, __global const uint* bricks, uint4 brick_dims) {
+                                __global const uint4* triangles, __global const uint* bricks,
+                                uint4 brick_dims) {
   TriangleGridView tg;
   tg.grid = grid;
   const float* m = p->world_to_grid;
@@ -123,8 +124,8 @@ inline int tg_intersect(const TgRay* r, float3 a, float3 b, float3 c, float t_mi
 /* ---- empty space ---------------------------------------------------------------------------------- */
 
 inline int tg_brick_empty(const TriangleGridView* tg, int i, int j, int k) {
-  const ulong b = ((ulong)(k / VOXR_BRICK) * tg->brick_y + (uint)(j / VOXR_BRICK)) * tg->brick_x +
-                  (uint)(i / VOXR_BRICK);
+  const ulong b =
+      ((ulong)(k / VOXR_BRICK) * tg->brick_y + (uint)(j / VOXR_BRICK)) * tg->brick_x + (uint)(i / VOXR_BRICK);
   return ((tg->bricks[b >> 5] >> (uint)(b & 31)) & 1u) == 0u;
 }
 
@@ -144,7 +145,8 @@ inline int tg_skip_brick(GvRay* walk, const GridView* g, float3 og, float3 dg) {
   const float3 p = og + t * dg;
   const int i = (int)floor(p.x), j = (int)floor(p.y), k = (int)floor(p.z);
   if (!gv_contains(g, i, j, k)) return 0;
-  if (i / VOXR_BRICK * VOXR_BRICK == bi && j / VOXR_BRICK * VOXR_BRICK == bj && k / VOXR_BRICK * VOXR_BRICK == bk)
+  if (i / VOXR_BRICK * VOXR_BRICK == bi && j / VOXR_BRICK * VOXR_BRICK == bj &&
+      k / VOXR_BRICK * VOXR_BRICK == bk)
     return 1;
   walk->i = i;
   walk->j = j;
@@ -157,23 +159,36 @@ inline int tg_skip_brick(GvRay* walk, const GridView* g, float3 og, float3 dg) {
 /* ---- nearest hit through the lists ----------------------------------------------------------------- */
 
 typedef struct TgHit {
-  float t;        /* ray parameter (world units for a unit direction) */
-  float b1, b2;   /* barycentric weights of the triangle's vertices 1 and 2 */
-  uint triangle;  /* mesh index; VOXR_NO_TRIANGLE when nothing was hit */
-  uint material;  /* the triangle's material id */
-  int opaque;     /* its material is opaque */
+  float t;       /* ray parameter (world units for a unit direction) */
+  float b1, b2;  /* barycentric weights of the triangle's vertices 1 and 2 */
+  uint triangle; /* mesh index; VOXR_NO_TRIANGLE when nothing was hit */
+  uint material; /* the triangle's material id */
+  int opaque;    /* its material is opaque */
+  int enters;    /* the ray meets its front (its winding faces the ray) */
 } TgHit;
+
+/* Fills the rest of candidate hit *c on triangle `id` (vertices p0, p1, p2, material tri.w) of a ray along
+ * dir: which triangle, its material, whether opaque, whether the ray enters it. */
+inline void tg_classify(TgHit* c, uint id, uint4 tri, float3 p0, float3 p1, float3 p2, float3 dir,
+                        __global const RenderMaterial* materials) {
+  c->triangle = id;
+  c->material = tri.w;
+  c->opaque = materials[tri.w].kind == VOXR_MATERIAL_OPAQUE;
+  c->enters = dot(cross(p1 - p0, p2 - p0), dir) < 0.0f;
+}
 
 /* Whether hit c beats the best so far: nearer by more than `coincide`; within it (coincident surfaces, e.g. a
  * glass face standing on a floor, which rounding orders either way) an opaque surface before a dielectric or
- * sheet, of two opaque ones the nearer, then the lower id, and of dielectrics and sheets the lower id: the
- * reference's rule where surfaces touch (ReferenceScene::intersect). */
+ * sheet, of two opaque ones the nearer, then the lower id; of dielectrics and sheets one the ray enters
+ * before one it leaves (glass to water at a shared face is one interface, not glass to air to water), then
+ * the lower id: the reference's rule where surfaces touch (ReferenceScene::intersect). */
 inline int tg_better(const TgHit* c, const TgHit* best, float coincide) {
   if (best->triangle == VOXR_NO_TRIANGLE) return 1;
   if (c->t < best->t - coincide) return 1;
   if (c->t > best->t + coincide) return 0;
   if (c->opaque != best->opaque) return c->opaque > best->opaque;
   if (c->opaque && c->t != best->t) return c->t < best->t;
+  if (!c->opaque && c->enters != best->enters) return c->enters > best->enters;
   return c->triangle < best->triangle;
 }
 
@@ -202,6 +217,7 @@ inline int tg_nearest_hit_leaving(const TriangleGridView* tg, float3 origin, flo
   hit->b1 = hit->b2 = 0.0f;
   hit->material = 0;
   hit->opaque = 0;
+  hit->enters = 0;
   const float3 og = (float3)(dot(tg->to_grid[0].xyz, origin) + tg->to_grid[0].w,
                              dot(tg->to_grid[1].xyz, origin) + tg->to_grid[1].w,
                              dot(tg->to_grid[2].xyz, origin) + tg->to_grid[2].w);
@@ -232,19 +248,17 @@ inline int tg_nearest_hit_leaving(const TriangleGridView* tg, float3 origin, flo
             for (uint l = 0; l < leaving_count; ++l) left |= id == leaving[l];
             if (left) continue;
             const uint4 tri = tg->triangles[id];
+            const float3 p0 = tg->positions[tri.x].xyz, p1 = tg->positions[tri.y].xyz,
+                         p2 = tg->positions[tri.z].xyz;
             TgHit c;
-            if (!tg_intersect(&ray, tg->positions[tri.x].xyz, tg->positions[tri.y].xyz,
-                              tg->positions[tri.z].xyz, t_min, t_max, &c.t, &c.b1, &c.b2))
-              continue;
+            if (!tg_intersect(&ray, p0, p1, p2, t_min, t_max, &c.t, &c.b1, &c.b2)) continue;
             if (c.t < neighbour_t) {
               int neighbour = 0;
               for (uint l = 0; l < leaving_count; ++l)
                 neighbour |= tg_shares_vertex(tri, tg->triangles[leaving[l]]);
               if (neighbour) continue;
             }
-            c.triangle = id;
-            c.material = tri.w;
-            c.opaque = materials[tri.w].kind == VOXR_MATERIAL_OPAQUE;
+            tg_classify(&c, id, tri, p0, p1, p2, dir, materials);
             if (tg_better(&c, hit, coincide)) *hit = c;
           }
         }

@@ -43,13 +43,10 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void tg_probe_all(
   for (uint id = 0; id < triangle_count; ++id) {
     if (id == skip[ray]) continue;
     const uint4 t = triangles[id];
+    const float3 p0 = positions[t.x].xyz, p1 = positions[t.y].xyz, p2 = positions[t.z].xyz;
     TgHit c;
-    if (!tg_intersect(&r, positions[t.x].xyz, positions[t.y].xyz, positions[t.z].xyz, rays[ray].w, dirs[ray].w,
-                      &c.t, &c.b1, &c.b2))
-      continue;
-    c.triangle = id;
-    c.material = t.w;
-    c.opaque = materials[t.w].kind == VOXR_MATERIAL_OPAQUE;
+    if (!tg_intersect(&r, p0, p1, p2, rays[ray].w, dirs[ray].w, &c.t, &c.b1, &c.b2)) continue;
+    tg_classify(&c, id, t, p0, p1, p2, dirs[ray].xyz, materials);
     if (tg_better(&c, &best, coincide)) best = c;
   }
   tg_probe_store(&best, ray, tri, th);
