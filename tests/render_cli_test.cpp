@@ -9,7 +9,9 @@
 #include <string>
 
 #include "cli_support.h"
+#include "core/default_scene.h"
 #include "io/image_file.h"
+#include "metrics/image_metrics.h"
 
 namespace voxr {
 namespace {
@@ -62,6 +64,25 @@ TEST(RenderCli, CompareReferenceReportsErrorsAndWritesTheErrorImage) {
   EXPECT_GT(f["psnr"].get<double>(), 15.0);
   EXPECT_TRUE(fs::exists(scratch() / "compare.error.png"));
   EXPECT_NE(r.out.find("vs matched"), std::string::npos) << r.out;
+}
+
+// The README's first command renders the built-in scene with the default methods; that picture must be free
+// of speckle (issue 19): whole-image PSNR >= 35 dB against the exact reference (`--refraction reference`,
+// exact shadows), both at the scene's own camera and size, as the README renders it.
+TEST(RenderCli, BuiltInSceneWithTheDefaultMethodsMatchesTheReference) {
+  const fs::path defaults = scratch() / "builtin-defaults.exr";
+  const fs::path reference = scratch() / "builtin-reference.exr";
+  const test::CliResult d = run_voxr("render -o " + defaults.string());
+  ASSERT_EQ(d.code, 0) << d.err;
+  const test::CliResult r = run_voxr("render --refraction reference -o " + reference.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const ImageRgba a = read_image(defaults), b = read_image(reference);
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.height, b.height);
+  const Scene builtin = default_scene();
+  EXPECT_EQ(a.width, builtin.camera.width) << "the README's picture, at the scene camera's size";
+  EXPECT_EQ(a.height, builtin.camera.height);
+  EXPECT_GE(psnr(a, b), 35.0) << "RMSE " << rmse(a, b);
 }
 
 TEST(RenderCli, DistanceMapOptionsAreCheckedAndReported) {

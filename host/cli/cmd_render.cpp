@@ -58,7 +58,7 @@ namespace {
 struct RenderArgs {
   std::string input;  // empty: the built-in default scene
   std::string output = "render.png";
-  std::string shadows;  // empty: voxel (the references trace exact shadows and take no other)
+  std::string shadows;  // empty: kDefaultShadowMethod (the references trace exact shadows and take no other)
   uint32_t shadow_res = 256;
   std::string mode;  // empty: center
   std::string size;  // empty: the scene camera's
@@ -66,7 +66,7 @@ struct RenderArgs {
   std::string report;
   float bias = kDefaultShadowBias;
   float normal_offset = kDefaultNormalOffset;
-  std::string refraction = "voxel-multi";
+  std::string refraction{refraction_method_info(kDefaultRefractionMethod).name};
   uint32_t res = 256;
   std::string refraction_grid = "fitted";
   uint32_t coarse_res = 0;
@@ -98,7 +98,7 @@ nlohmann::json finite_or_inf(double v) {
 
 RenderOptions render_options(const RenderArgs& args) {
   RenderOptions options;
-  options.shadows = parse_shadow_method(args.shadows.empty() ? "voxel" : args.shadows);
+  options.shadows = args.shadows.empty() ? kDefaultShadowMethod : parse_shadow_method(args.shadows);
   if (!args.mode.empty() && options.shadows != ShadowMethod::kVoxel)
     fail("--mode applies to --shadows voxel only (the light voxelizer's rule)");
   options.mode = parse_raster_mode(args.mode.empty() ? "center" : args.mode);
@@ -506,7 +506,7 @@ Command add_render(CLI::App& app) {
          "image: .png (8-bit sRGB) or .exr (linear float); %d or %0Nd in the name: one image per frame")
       ->capture_default_str();
   add_shadows_option(*sub, args->shadows, "shadow method (the references trace exact shadows)")
-      ->default_str("voxel");
+      ->default_str(std::string(shadow_method_info(kDefaultShadowMethod).name));
   add_grid_option(*sub, "--shadow-res", GridKind::kShadow, args->shadow_res)->capture_default_str();
   sub->add_option("--mode", args->mode,
                   "voxel: center (default; each column's write count is its centre ray's crossings) or "
