@@ -151,7 +151,7 @@ TEST(RenderCli, BadFlagsAndOutputsAreOneLineErrors) {
                 "/data/scenes/foliage.json --shadows none --compare-reference -o " + out.string(),
             "foliage.json: --compare-reference has nothing to measure"},
            {"render --layers 2 -o " + out.string(),
-            "--layers applies to --refraction distance-maps only, not --refraction voxel-multi"},
+            "--layers applies to --refraction distance-maps only, not --refraction voxel-exact"},
            {"render --refraction image-space --dm-depth 4 -o " + out.string(),
             "--dm-depth applies to --refraction distance-maps only, not --refraction image-space"},
            {"render --step big -o " + out.string(), "unknown step rule 'big'"},
