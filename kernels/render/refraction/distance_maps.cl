@@ -228,21 +228,10 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void distance_m
     /* A dielectric interface: leave the material if inside it, else enter it (refract_voxel.cl's rule). */
     const float3 here = o + t * d;
     const uint mat = min(h.material, material_count - 1u);
-    const int inside = rp_medium_index(media, depth, mat);
-    if (inside < 0 && depth == DM_MAX_MEDIA) { /* nested deeper than the stack holds: say so, do not guess */
-      events |= VOXR_PATH_LOST;
-      break;
-    }
-    float n1, n2;
-    rp_interface_iors(media, depth, inside, mat, materials, &n1, &n2);
     float3 next;
-    if (rp_refract(d, vload3(0, h.normal), n1, n2, &next, &cos_i)) {
-      throughput *= 1.0f - voxr_schlick(cos_i, n1, n2);
-      rp_cross_medium(media, &depth, inside, mat);
-    } else {
-      events |= VOXR_PATH_TIR;
-    }
-    ++events;
+    if (!rp_interface(d, vload3(0, h.normal), mat, media, &depth, DM_MAX_MEDIA, materials, &throughput,
+                      &events, &next))
+      break;
     exit = here;
     if ((events & VOXR_PATH_EVENTS_MASK) >= p.max_events) {
       events |= VOXR_PATH_LOST;

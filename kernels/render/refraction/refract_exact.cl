@@ -6,15 +6,14 @@
  * (tg_nearest_hit_leaving: the triangles just left are skipped, their vertex-sharing neighbours only within
  * `coincide` of the origin, every other surface counts from `coincide` behind it, so a floor coplanar with a
  * glass face is met whichever side of it rounding put the point; among coincident hits an opaque one wins,
- * then the lowest id: the reference's ReferenceScene::intersect_leaving), absorb along the segment inside the innermost medium (Beer-Lambert), and at a
- * dielectric refract by Snell's law with the interpolated shading normal (surface_normal.h), Schlick 1 - F,
- * total internal reflection, the parity media stack; a sheet multiplies its transmittance; an opaque hit
- * ends the path with its SurfaceSample (triangle, barycentrics, normals), which the shadow lookup and shading
- * treat like any surface. Nothing: the environment.
- * in:  the triangle grid, camera, primary samples, the pixel list and its count, materials, vertex normals
- *      (float4), the coincidence tolerance (world units)
- * out: ends[id], paths[id] of listed pixels only
- * shape: one work item per listed pixel. */
+ * then the lowest id: the reference's ReferenceScene::intersect_leaving), absorb along the segment inside the
+ * innermost medium (Beer-Lambert), and at a dielectric refract by Snell's law with the interpolated shading
+ * normal (surface_normal.h), Schlick 1 - F, total internal reflection, the parity media stack; a sheet
+ * multiplies its transmittance; an opaque hit ends the path with its SurfaceSample (triangle, barycentrics,
+ * normals), which the shadow lookup and shading treat like any surface. Nothing: the environment. in:  the
+ * triangle grid, camera, primary samples, the pixel list and its count, materials, vertex normals (float4),
+ * the coincidence tolerance (world units) out: ends[id], paths[id] of listed pixels only shape: one work item
+ * per listed pixel. */
 #include "refraction_path.h"
 #include "surface_normal.h"
 #include "triangle_grid.h"
@@ -51,9 +50,9 @@ inline SurfaceSample exact_sample(const TriangleGridView* tg, __global const flo
 
 __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_exact(
     VOXR_TRIANGLE_GRID_PARAMS, RenderCamera cam, __global const SurfaceSample* primary,
-    __global const uint* pixel_list, __global const uint* pixel_count, __global const RenderMaterial* materials,
-    uint material_count, __global const float4* normals, float coincide, __global SurfaceSample* ends,
-    __global RefractionPath* paths) {
+    __global const uint* pixel_list, __global const uint* pixel_count,
+    __global const RenderMaterial* materials, uint material_count, __global const float4* normals,
+    float coincide, __global SurfaceSample* ends, __global RefractionPath* paths) {
   uint id;
   if (!rp_listed_pixel(pixel_list, pixel_count, get_global_id(0), &id)) return;
   const TriangleGridView tg = VOXR_TRIANGLE_GRID();
@@ -86,8 +85,8 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_ex
       break;
     }
     TgHit h;
-    if (!tg_nearest_hit_leaving(&tg, here, dir, -coincide, INFINITY, leaving, leaving_count, coincide, materials,
-                                coincide, &h))
+    if (!tg_nearest_hit_leaving(&tg, here, dir, -coincide, INFINITY, leaving, leaving_count, coincide,
+                                materials, coincide, &h))
       break;
     const SurfaceSample hit = exact_sample(&tg, normals, &h, here, dir);
     if (depth > 0u) throughput *= exp(-vload3(0, materials[media[depth - 1u]].absorption) * hit.distance);
@@ -109,22 +108,12 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_ex
       throughput *= vload3(0, mm.transmittance);
       continue;
     }
-    const int inside = rp_medium_index(media, depth, mat);
-    if (inside < 0 && depth == MAX_MEDIA) { /* nested deeper than the stack holds: say so, do not guess */
-      events |= VOXR_PATH_LOST;
+    float3 new_dir;
+    if (!rp_interface(dir, vload3(0, hit.normal), mat, media, &depth, MAX_MEDIA, materials, &throughput,
+                      &events, &new_dir)) {
       ended = 1;
       break;
     }
-    float n1, n2;
-    rp_interface_iors(media, depth, inside, mat, materials, &n1, &n2);
-    float3 new_dir;
-    if (rp_refract(dir, vload3(0, hit.normal), n1, n2, &new_dir, &cos_i)) {
-      throughput *= 1.0f - voxr_schlick(cos_i, n1, n2);
-      rp_cross_medium(media, &depth, inside, mat);
-    } else {
-      events |= VOXR_PATH_TIR;
-    }
-    ++events;
     exit = here;
     if ((events & VOXR_PATH_EVENTS_MASK) >= VOXR_PATH_MAX_EVENTS) {
       events |= VOXR_PATH_LOST;

@@ -353,22 +353,11 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
         p.smooth_normals ? boundary_normal(&l->g, m.i, m.j, m.k, rank, stored, here, 1u) : n_voxel;
     absorb_segment(&throughput, materials, media, depth, last, here, l->voxel_size);
     last = here;
-    const int inside = rp_medium_index(media, depth, mat);
-    if (inside < 0 && depth == MAX_MEDIA) { /* nested deeper than the stack holds: say so, do not guess */
-      events |= VOXR_PATH_LOST;
+    float3 new_dir;
+    if (!rp_interface(dir, n, mat, media, &depth, MAX_MEDIA, materials, &throughput, &events, &new_dir)) {
       ended = 1;
       break;
     }
-    float n1, n2;
-    rp_interface_iors(media, depth, inside, mat, materials, &n1, &n2);
-    float3 new_dir;
-    if (rp_refract(dir, n, n1, n2, &new_dir, &cos_i)) {
-      throughput *= 1.0f - voxr_schlick(cos_i, n1, n2);
-      rp_cross_medium(media, &depth, inside, mat);
-    } else {
-      events |= VOXR_PATH_TIR;
-    }
-    ++events;
     if (p.two_surface && (events & VOXR_PATH_EVENTS_MASK) >= 2u) depth = 0; /* passes all later glass */
     prev_normal = n_voxel;
     run_material = mat;

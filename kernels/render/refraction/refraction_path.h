@@ -138,4 +138,30 @@ inline void rp_cross_medium(uint* media, uint* depth, int inside, uint mat) {
   }
 }
 
+/* A path along unit *dir inside media[0..*depth) meets a dielectric interface of material `mat`, unit normal
+ * n (either orientation): refracts by Snell's law (Schlick 1 - F into *throughput, the media stack crossed)
+ * or mirrors on total internal reflection (VOXR_PATH_TIR), and counts the event; the new direction goes to
+ * *new_dir. Returns 0, having changed nothing but VOXR_PATH_LOST in *events, when `mat` would be entered
+ * with the stack full (max_media): nested deeper than it holds, the path ends rather than guess. The
+ * caller checks the event limit. The one interface rule of every refraction kernel and the reference. */
+inline int rp_interface(float3 dir, float3 n, uint mat, uint* media, uint* depth, uint max_media,
+                        __global const RenderMaterial* materials, float3* throughput, uint* events,
+                        float3* new_dir) {
+  const int inside = rp_medium_index(media, *depth, mat);
+  if (inside < 0 && *depth == max_media) {
+    *events |= VOXR_PATH_LOST;
+    return 0;
+  }
+  float n1, n2, cos_i;
+  rp_interface_iors(media, *depth, inside, mat, materials, &n1, &n2);
+  if (rp_refract(dir, n, n1, n2, new_dir, &cos_i)) {
+    *throughput *= 1.0f - voxr_schlick(cos_i, n1, n2);
+    rp_cross_medium(media, depth, inside, mat);
+  } else {
+    *events |= VOXR_PATH_TIR;
+  }
+  ++*events;
+  return 1;
+}
+
 #endif
