@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Issue 18's frame targets, measured side by side in one run: warm frames (median of --frames N, the first
-# frame of each process excluded by the median) of the default methods (voxel shadows + voxel-multi) and of
+# Issue 18's and 19's frame targets, measured side by side in one run: warm frames (median of --frames N, the
+# first frame of each process excluded by the median) of the default methods (`voxr render` with no method
+# flags: voxel-exact shadows and refraction since issue 19; voxel + voxel-multi before) and of
 # the exact Embree reference (--refraction reference: matched refraction, exact shadows), per scene and
 # size, plus fresh `voxr render` processes of the built-in scene. Prints a Markdown table.
 # usage: bench/frame_targets.sh [VOXR [BASELINE_VOXR]] [--frames N] [--fresh N]
@@ -47,7 +48,7 @@ echo "| scene | size | default ms | reference ms | default / reference | default
 echo "|---|---|---:|---:|---:|---:|---:|$([ -n "$baseline" ] && echo '---:|')"
 for size in 640x480 1920x1080; do
   for scene in data/scenes/shadow-tree.json data/scenes/glass-sphere.json data/scenes/bunny-glass-130.json \
-               data/scenes/glass-vase.json data/scenes/tree-1m.json; do
+               data/scenes/glass-vase.json data/scenes/thin-vase-floor.json data/scenes/tree-1m.json; do
     d=$(host_out=$tmp/host frame "$voxr" "$scene" "$size")
     r=$(frame "$voxr" "$scene" "$size" --refraction reference)
     b=""

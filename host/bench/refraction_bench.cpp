@@ -16,6 +16,7 @@
 #include "reference/reference_refraction.h"
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
+#include "render/refraction_method.h"
 #include "render/render_scene.h"
 #include "util/clock.h"
 #include "util/error.h"
@@ -238,11 +239,12 @@ RefractionBenchRun measure_refraction(ClRuntime& cl, const RefractionBenchOption
     // What a user gets: a fresh `voxr render` process.
     if (fresh) {
       progress(fmt::format("{}: fresh processes", label));
+      const std::string method(refraction_method_info(kDefaultRefractionMethod).name);
       FreshRenderTimes t{label, soup.triangle_count(),
-                         fresh({scene_name, "--refraction", "voxel-multi", "--res", "256", "--shadows",
-                                args.shadows, "--shadow-res", std::to_string(args.shadow_res)})};
+                         fresh({scene_name, "--refraction", method, "--res", "256", "--shadows", args.shadows,
+                                "--shadow-res", std::to_string(args.shadow_res)})};
       progress_done();
-      fmt::print("  fresh `voxr render --refraction voxel-multi --res 256`: {:.0f} ms\n", median(t.wall_ms));
+      fmt::print("  fresh `voxr render --refraction {} --res 256`: {:.0f} ms\n", method, median(t.wall_ms));
       std::fflush(stdout);
       run.fresh.push_back(std::move(t));
     }

@@ -10,7 +10,7 @@
 //            ends, so that the error is refraction's alone, against the matched reference: image RMSE and
 //            PSNR, exit direction angle mean and 95th percentile, event sequence mismatches, non-finite
 //            pixels (eval/reference_comparison.h, metrics/refraction_metrics.h);
-//   fresh    `voxr render SCENE --refraction voxel-multi --res 256` (same shadows) as a new process, timed
+//   fresh    `voxr render SCENE --refraction <the default> --res 256` (same shadows) as a new process, timed
 //            by the caller.
 // Image-space refraction has no grid: it runs once per scene (res empty); Wyman's d_N is ray cast once per
 // scene before it, as the paper precomputes it offline (its time is reported apart, not in the frame).
@@ -25,6 +25,7 @@
 #include "bench/shadow_bench.h"
 #include "cl/cl_runtime.h"
 #include "metrics/refraction_metrics.h"
+#include "render/shadow_method.h"
 
 namespace voxr {
 
@@ -45,7 +46,7 @@ struct RefractionBenchOptions {
                                       "image-space",
                                       "distance-maps"};
   std::vector<uint32_t> resolutions = {64, 128, 256, 512};
-  std::string shadows = "voxel";
+  std::string shadows{shadow_method_info(kDefaultShadowMethod).name};  // the timed frames'; errors: exact
   uint32_t shadow_res = 256;
   glm::uvec2 size{640, 480};  // the image
   int repeat = 5;
@@ -84,7 +85,7 @@ struct RefractionBenchRun {
 void check_refraction_bench(const RefractionBenchOptions& options);
 
 // Runs the measurements on `cl`'s device, printing one line per case; `fresh` (optional) times `voxr render
-// SCENE --refraction voxel-multi --res 256 --shadows S --shadow-res R` after each scene. Throws as
+// SCENE --refraction <the default> --res 256 --shadows S --shadow-res R` after each scene. Throws as
 // check_refraction_bench does.
 RefractionBenchRun measure_refraction(ClRuntime& cl, const RefractionBenchOptions& options,
                                       const FreshRenders& fresh = {});

@@ -16,6 +16,7 @@
 #include "cli/parse_args.h"
 #include "cli/process.h"
 #include "io/atomic_file.h"
+#include "render/refraction_method.h"
 #include "render/shadow_method.h"
 
 namespace voxr::cli {
@@ -129,8 +130,9 @@ int run_bench_refraction(const BenchRefractionArgs& args) {
           "| scene | triangles | ms |\n|---|---:|---:|\n"
        << precompute_table;
   if (!fresh_table.empty())
-    md << "\nFresh processes, `voxr render SCENE --refraction voxel-multi --res 256 --shadows "
-       << options.shadows << " --shadow-res " << options.shadow_res << " --size " << args.size
+    md << "\nFresh processes, `voxr render SCENE --refraction "
+       << refraction_method_info(kDefaultRefractionMethod).name << " --res 256 --shadows " << options.shadows
+       << " --shadow-res " << options.shadow_res << " --size " << args.size
        << "` (wall ms, median [min, max] of " << args.fresh
        << "; includes opening the device, loading the programs from the cache, reading the scene and writing "
           "the PNG):\n\n| scene | triangles | ms | min | max |\n|---|---:|---:|---:|---:|\n"
@@ -172,7 +174,9 @@ Command add_bench_refraction(CLI::App& bench) {
   add_device_option(*sub, a->device);
   add_out_prefix_option(*sub, a->out, "PREFIX.csv, PREFIX.md, PREFIX-charts/");
   add_repeat_options(*sub, a->bench.repeat, a->bench.warmup);
-  add_fresh_option(*sub, a->fresh, "voxr render SCENE --refraction voxel-multi --res 256");
+  add_fresh_option(*sub, a->fresh,
+                   fmt::format("voxr render SCENE --refraction {} --res 256",
+                               refraction_method_info(kDefaultRefractionMethod).name));
   return {sub, [a] { return run_bench_refraction(*a); }};
 }
 
