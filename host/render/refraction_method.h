@@ -74,9 +74,10 @@ inline constexpr std::array<RefractionGridInfo, 2> kRefractionGrids = {{
      "one grid over the whole scene, --res voxels along its longest side (the papers)"},
 }};
 
-// `voxr render`'s refraction when none is asked for: exact against the matched reference (68.8 dB on the
-// built-in scene, where voxel-multi gives 32.5 dB) at voxel-multi's frame time there (README "Choosing
-// methods").
+// `voxr render`'s refraction when none is asked for, chosen by the speed/accuracy chart: exact against the
+// matched reference (68.8 dB on the built-in scene, where voxel-multi gives 32.5 dB; 47-102 dB on the
+// twelve refraction scenes) and faster than voxel-multi on ten of them
+// (bench/results/refraction-exact-pocl-2core.md; README "Choosing methods").
 inline constexpr RefractionMethod kDefaultRefractionMethod = RefractionMethod::kVoxelExact;
 
 const RefractionMethodInfo& refraction_method_info(RefractionMethod method);

@@ -33,10 +33,11 @@ inline constexpr std::array<ShadowMethodInfo, 7> kShadowMethods = {{
     {ShadowMethod::kNone, "none", "no shadows: every receiver fully lit"},
 }};
 
-// `voxr render`'s shadows when none are asked for: exact (transmittance error 0 against the reference) and,
-// on the built-in scene, 1.2x the frame time of `voxel` (error 0.026) on this project's 2-core CPU; it
-// shares the frame's triangle lists with voxel-exact refraction (README "Choosing methods").
-inline constexpr ShadowMethod kDefaultShadowMethod = ShadowMethod::kVoxelExact;
+// `voxr render`'s shadows when none are asked for, chosen by the speed/accuracy chart: Chang & Lai's voxel
+// shadow map, on the front at every scene (transmittance RMSE 0.026 on the built-in scene) and 1.5-4x
+// faster than voxel-exact on foliage (tree-1m 640x480: 228 vs 862 ms, bench/results/frame-targets-pocl-2core.md);
+// voxel-exact is exact at 1.2x voxel's frame on the built-in scene (README "Choosing methods").
+inline constexpr ShadowMethod kDefaultShadowMethod = ShadowMethod::kVoxel;
 
 const ShadowMethodInfo& shadow_method_info(ShadowMethod method);
 // Throws voxr::Error naming the unknown method and listing the known ones.
