@@ -89,8 +89,10 @@ std::vector<ParetoRow> refraction_rows(ClRuntime& cl, const ParetoBenchOptions& 
   std::vector<ParetoRow> rows;
   for (const RefractionBenchRow& r : measure_refraction(cl, refraction_options(args)).rows) {
     const bool reference = r.method == "reference-matched";
+    // The papers' methods are named with their step rule and normals; the others have none.
+    const bool voxel_march = r.method == "voxel-multi" || r.method == "voxel-two";
     const std::string method =
-        r.step.empty() ? r.method : fmt::format("{}-{}-{}", r.method, r.step, r.normals);
+        voxel_march && !r.step.empty() ? fmt::format("{}-{}-{}", r.method, r.step, r.normals) : r.method;
     rows.push_back({"refraction", r.scene, method, r.resolution, r.frame_ms, r.frame_min, r.frame_max,
                     "frame", reference ? 0.0 : r.error.rmse, "image_rmse", r.grid_bytes, r.load, reference});
   }
