@@ -33,10 +33,10 @@ inline constexpr std::array<ShadowMethodInfo, 7> kShadowMethods = {{
     {ShadowMethod::kNone, "none", "no shadows: every receiver fully lit"},
 }};
 
-// `voxr render`'s shadows when none are asked for, chosen by the speed/accuracy chart: Chang & Lai's voxel
-// shadow map, on the front at every scene (transmittance RMSE 0.026 on the built-in scene) and 1.5-4x
-// faster than voxel-exact on foliage (tree-1m 640x480: 228 vs 862 ms, bench/results/frame-targets-pocl-2core.md);
-// voxel-exact is exact at 1.2x voxel's frame on the built-in scene (README "Choosing methods").
+// `voxr render`'s shadows when none are asked for, chosen by the speed/accuracy chart and the frame times:
+// Chang & Lai's voxel shadow map errs a little (transmittance RMSE 0.026 on the built-in scene) and is
+// 1.8-4.6x faster than voxel-exact on foliage (640x480: shadow-tree 122 vs 213 ms, tree-1m 189 vs 862 ms;
+// bench/results/frame-targets-pocl-2core.md runs 5 and 5a); voxel-exact is exact (README "Choosing methods").
 inline constexpr ShadowMethod kDefaultShadowMethod = ShadowMethod::kVoxel;
 
 const ShadowMethodInfo& shadow_method_info(ShadowMethod method);
