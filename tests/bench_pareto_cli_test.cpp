@@ -24,13 +24,14 @@ TEST(BenchParetoCli, TinyRunWritesEveryEffectWithItsFront) {
   const fs::path dir = scratch() / "pareto";
   const fs::path page = dir / "docs" / "pareto.md";
   fs::create_directories(dir);
-  const test::CliResult r = run_voxr(
-      "bench pareto --out " + (dir / "p").string() + " --doc " + page.string() +
-      " --vox-meshes torus --vox-res 16 --vox-methods grid,slice-center --vox-samples 2000"
-      " --shadow-scenes default --shadow-res 16 --shadow-methods voxel-center,opaque"
-      " --refraction-scenes " +
-      kSphere +
-      " --refraction-res 16 --refraction-methods voxel-two,image-space --size 48x32 --repeat 1 --warmup 0");
+  const test::CliResult r =
+      run_voxr("bench pareto --out " + (dir / "p").string() + " --doc " + page.string() +
+               " --vox-meshes torus --vox-res 16 --vox-methods grid,slice-center --vox-samples 2000"
+               " --shadow-scenes default --shadow-res 16 --shadow-methods voxel-center,opaque"
+               " --refraction-scenes " +
+               kSphere +
+               " --refraction-res 16 --refraction-methods voxel-two,voxel-exact,image-space --size 48x32 "
+               "--repeat 1 --warmup 0");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string header = test::slurp(dir / "p.csv").substr(0, test::slurp(dir / "p.csv").find('\n'));
   EXPECT_EQ(
@@ -38,12 +39,15 @@ TEST(BenchParetoCli, TinyRunWritesEveryEffectWithItsFront) {
       "effect,scene,method,resolution,time_ms,time_ms_min,time_ms_max,time_measure,error,error_measure,bytes,"
       "load_1min,reference,front");
   const auto rows = read_csv(dir / "p.csv");
-  ASSERT_EQ(rows.size(), 8u);
+  ASSERT_EQ(rows.size(), 9u);
   // Each rendering effect's exact reference is a run of its own (error 0), before the methods.
-  const std::vector<std::string> effects = {"voxelization", "voxelization", "shadows",    "shadows",
-                                            "shadows",      "refraction",   "refraction", "refraction"};
-  const std::vector<std::string> scenes = {"torus",   "torus",        "default",      "default",
-                                           "default", "glass-sphere", "glass-sphere", "glass-sphere"};
+  // The papers' voxel methods are named with their step rule and normals, voxel-exact has none.
+  const std::vector<std::string> effects = {"voxelization", "voxelization", "shadows",
+                                            "shadows",      "shadows",      "refraction",
+                                            "refraction",   "refraction",   "refraction"};
+  const std::vector<std::string> scenes = {"torus",        "torus",        "default",
+                                           "default",      "default",      "glass-sphere",
+                                           "glass-sphere", "glass-sphere", "glass-sphere"};
   const std::vector<std::string> methods = {"grid",
                                             "slice-center",
                                             "reference",
@@ -51,11 +55,13 @@ TEST(BenchParetoCli, TinyRunWritesEveryEffectWithItsFront) {
                                             "opaque",
                                             "reference-matched",
                                             "voxel-two-papers-smooth",
+                                            "voxel-exact",
                                             "image-space"};
-  const std::vector<std::string> res = {"16", "16", "", "16", "16", "", "16", ""};
+  const std::vector<std::string> res = {"16", "16", "", "16", "16", "", "16", "16", ""};
   const std::vector<std::string> measures = {"chamfer_rel",        "chamfer_rel",        "transmittance_rmse",
                                              "transmittance_rmse", "transmittance_rmse", "image_rmse",
-                                             "image_rmse",         "image_rmse"};
+                                             "image_rmse",         "image_rmse",         "image_rmse"};
+  ASSERT_EQ(methods.size(), rows.size());
   const std::set<size_t> references = {2, 5};
   for (size_t i = 0; i < rows.size(); ++i) {
     const auto& row = rows[i];
