@@ -74,6 +74,20 @@ TEST(Cli, EmptyMesh) {
   expect_one_line_error(run("voxelize " + p.string()), p.string());
 }
 
+// Issue 20, kind 1 (../shared/cases/render/r01_deep_json.json): a scene whose camera.position is an array
+// nested 100 000 deep (200 KB) crashed voxelize and render while quoting it; both now refuse it in one line
+// that names the file and the key, exit 1.
+TEST(Cli, DeeplyNestedSceneValueIsAOneLineError) {
+  const int depth = 100000;
+  const fs::path p = write_file("deep.json", R"({"meshes":[{"generator":"box"}],"camera":{"position":)" +
+                                                 std::string(depth, '[') + std::string(depth, ']') + "}}");
+  for (const std::string command : {"voxelize -o " + (scratch() / "deep.nrrd").string(),
+                                    "render -o " + (scratch() / "deep.png").string()}) {
+    const Result r = run(command + " " + p.string());
+    expect_one_line_error(r, p.string() + ": 'camera.position' must be an array of 3 numbers");
+  }
+}
+
 TEST(Cli, NanVertex) {
   const fs::path p = write_file("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
   expect_one_line_error(run("voxelize " + p.string()), p.string());

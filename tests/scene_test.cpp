@@ -195,6 +195,32 @@ TEST(Scene, BadValuesNameTheirKey) {
   }
 }
 
+// A value quoted in a message is bounded in depth and length (issue 20, kind 1: dumping a 100 000-deep array
+// whole overflowed the stack): the message names the file and the key and shows a few levels.
+TEST(Scene, DeepAndHugeValuesAreQuotedBriefly) {
+  const std::string box = R"("meshes": [{"generator": "box"}])";
+  const int depth = 100000;
+  const std::string deep = std::string(depth, '[') + "1" + std::string(depth, ']');
+  try {
+    parse_scene("{" + box + R"(, "camera": {"position": )" + deep + "}}", "deep.json", ".");
+    FAIL() << "a 100 000-deep position was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "deep.json: 'camera.position' must be an array of 3 numbers (got [[[[[...]]]]])");
+  }
+  std::string wide = "[0";
+  for (int i = 1; i < 200000; ++i) wide += ",0";
+  wide += "]";
+  try {
+    parse_scene("{" + box + R"(, "camera": {"position": )" + wide + "}}", "wide.json", ".");
+    FAIL() << "a 200 000-element position was accepted";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("wide.json: 'camera.position'"), std::string::npos) << what;
+    EXPECT_LT(what.size(), 160u) << what;
+  }
+}
+
 TEST(Scene, SyntaxErrorsGiveTheLine) {
   EXPECT_EQ(scene_error("{\n  \"meshes\": [\n    {\"generator\": \"box\",}\n  ]\n}"),
             "s.json: JSON parse error at line 3, column 25: syntax error while parsing object key - "

@@ -13,10 +13,42 @@ namespace voxr {
 
 using nlohmann::json;
 
-// Compact JSON of a value for messages, cut to a readable length.
+namespace {
+
+// Appends compact JSON of `value` to `out`, containers below `depth` levels as [...] / {...}, and stops once
+// `out` is longer than `limit` (the caller cuts it): bounded work and stack however large or deep the value
+// (json::dump recurses once per level and overflowed the stack on a 100 000-deep array).
+void append_shown(const json& value, int depth, size_t limit, std::string& out) {
+  if (out.size() > limit) return;
+  if (!value.is_structured()) {
+    out += value.dump();
+    return;
+  }
+  const bool array = value.is_array();
+  if (depth == 0 && !value.empty()) {
+    out += array ? "[...]" : "{...}";
+    return;
+  }
+  out += array ? '[' : '{';
+  bool first = true;
+  for (auto it = value.begin(); it != value.end() && out.size() <= limit; ++it) {
+    if (!first) out += ',';
+    first = false;
+    if (!array) out += json(it.key()).dump() + ':';
+    append_shown(*it, depth - 1, limit, out);
+  }
+  out += array ? ']' : '}';
+}
+
+}  // namespace
+
+// Compact JSON of a value for messages, cut to a readable length and depth.
 std::string shown(const json& value) {
-  std::string s = value.dump();
-  return s.size() > 40 ? s.substr(0, 37) + "..." : s;
+  constexpr size_t kLength = 40;
+  constexpr int kDepth = 4;
+  std::string s;
+  append_shown(value, kDepth, kLength, s);
+  return s.size() > kLength ? s.substr(0, kLength - 3) + "..." : s;
 }
 
 namespace {

@@ -66,7 +66,8 @@ class JsonObjectReader {
 // The value at `path` as a 3-vector of finite numbers.
 glm::vec3 json_vec3(const nlohmann::json& value, const std::string& where, const std::string& path);
 
-// Compact JSON of a value for messages, cut to a readable length.
+// Compact JSON of a value for messages: at most 40 characters and 4 levels (deeper containers as [...] /
+// {...}), in work and stack bounded however large or deep the value is.
 std::string shown(const nlohmann::json& value);
 // "a, b, c".
 std::string join(const std::vector<std::string_view>& items);
