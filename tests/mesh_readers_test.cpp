@@ -1021,6 +1021,25 @@ TEST(MeshReadersStl, AsciiWithSeveralSolids) {
   EXPECT_EQ(stl_check(tris, crlf, 16, notes), "");
 }
 
+// Issue 20, kind 10 (../shared/cases/render/r10_ascii_upper.stl): writers emit the keywords in upper case
+// (`SOLID ... FACET NORMAL ... OUTER LOOP ... VERTEX ... ENDSOLID`) or mixed; the bytes are ASCII STL all the
+// same (they do not add up to the binary size their header would announce) and read as the same cube.
+TEST(MeshReadersStl, AsciiKeywordsInAnyCase) {
+  const std::vector<Triangle> tris = cube_triangles();
+  const std::string lower = ascii_solid("part", tris, 0, tris.size());
+  std::string upper, mixed;
+  for (size_t i = 0; i < lower.size(); ++i) {
+    const char c = lower[i];
+    upper += c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c;
+    mixed += c >= 'a' && c <= 'z' && i % 2 ? char(c - 'a' + 'A') : c;
+  }
+  std::vector<std::string> notes;
+  EXPECT_EQ(stl_check(tris, upper, 8, notes), "");
+  EXPECT_EQ(stl_check(tris, mixed, 8, notes), "");
+  EXPECT_EQ(stl_check(tris, binary_stl(tris), 8, notes), "");
+  EXPECT_TRUE(notes.empty());
+}
+
 TEST(MeshReadersStl, BinaryCubeHas8Positions) {
   const std::vector<Triangle> tris = cube_triangles();
   std::vector<std::string> notes;

@@ -11,15 +11,23 @@ namespace voxr {
 
 namespace {
 
+// Whether `text` is the ASCII STL keyword `keyword` (lower case) in any case: writers emit `SOLID ...
+// ENDSOLID` as well as `solid ... endsolid`.
+bool is_keyword(std::string_view text, std::string_view keyword) {
+  return text.size() == keyword.size() &&
+         std::equal(text.begin(), text.end(), keyword.begin(),
+                    [](char a, char b) { return (a >= 'A' && a <= 'Z' ? char(a - 'A' + 'a') : a) == b; });
+}
+
 bool looks_ascii(std::string_view bytes) {
   size_t i = 0;
   while (i < bytes.size() && (text::is_space(bytes[i]) || bytes[i] == '\n')) ++i;
-  if (bytes.substr(i, 5) != "solid") return false;
+  if (!is_keyword(bytes.substr(i, 5), "solid")) return false;
   const size_t eol = bytes.find('\n', i);
   if (eol == std::string_view::npos) return bytes.size() < 84;  // a one-line file is no binary STL either
   i = eol + 1;
   while (i < bytes.size() && (text::is_space(bytes[i]) || bytes[i] == '\n')) ++i;
-  return bytes.substr(i, 5) == "facet" || bytes.substr(i, 8) == "endsolid";
+  return is_keyword(bytes.substr(i, 5), "facet") || is_keyword(bytes.substr(i, 8), "endsolid");
 }
 
 PolygonMesh read_binary(const std::string& name, std::string_view bytes, uint32_t triangles) {
@@ -54,15 +62,15 @@ PolygonMesh read_ascii(const std::string& name, std::string_view bytes) {
   while (lines.next(line, number)) {
     text::split(line, 0, tokens);
     if (tokens.empty()) continue;
-    if (tokens[0] == "outer") {
+    if (is_keyword(tokens[0], "outer")) {
       if (in_loop) fail("{}: line {}: 'outer loop' inside the loop of line {}", name, number, loop_line);
       in_loop = true;
       loop_line = number;
       loop.clear();
-    } else if (tokens[0] == "vertex") {
+    } else if (is_keyword(tokens[0], "vertex")) {
       if (!in_loop) fail("{}: line {}: a vertex outside 'outer loop' ... 'endloop'", name, number);
       loop.push_back(welder.add(text::parse_vertex(name, number, tokens)));
-    } else if (tokens[0] == "endloop") {
+    } else if (is_keyword(tokens[0], "endloop")) {
       if (!in_loop) fail("{}: line {}: 'endloop' without 'outer loop'", name, number);
       in_loop = false;
       mesh.add_face(loop.data(), uint32_t(loop.size()));
