@@ -146,6 +146,31 @@ TEST(AtomicFile, FailureWhileFlushingIsAnError) {
   EXPECT_TRUE(listing(dir.path()).empty());
 }
 
+// Issue 20, kind 9: an existing read-only output was silently replaced through the rename (and lost its
+// mode). It is refused, untouched; a writable file replaced keeps its permissions.
+TEST(AtomicFile, ReadOnlyOutputIsRefusedAndLeftUntouched) {
+  TempDir dir;
+  const fs::path out = dir.write("locked.nrrd", "old");
+  fs::permissions(out, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  try {
+    write_file_atomically(out, "new");
+    FAIL() << "a read-only file was replaced";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), out.string() + ": the file exists and is read-only (left untouched)");
+  }
+  EXPECT_EQ(slurp(out), "old");
+  EXPECT_EQ(fs::status(out).permissions(),
+            fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  EXPECT_EQ(listing(dir.path()), std::set<std::string>{"locked.nrrd"});
+
+  const fs::path shared = dir.write("shared.json", "old");
+  const fs::perms mode = fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read;
+  fs::permissions(shared, mode);
+  write_file_atomically(shared, "new");
+  EXPECT_EQ(slurp(shared), "new");
+  EXPECT_EQ(fs::status(shared).permissions(), mode);
+}
+
 TEST(AtomicFile, MissingFolderIsAnErrorNamingTheFile) {
   TempDir dir;
   const fs::path out = dir.path() / "no-such-folder" / "out.vti";

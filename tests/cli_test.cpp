@@ -88,6 +88,18 @@ TEST(Cli, DeeplyNestedSceneValueIsAOneLineError) {
   }
 }
 
+// Issue 20, kind 9: an existing read-only output is refused in one line before any work, and left as it was.
+TEST(Cli, ReadOnlyOutputIsAOneLineErrorAndUntouched) {
+  const fs::path mesh = write_file("ro-tetra.obj", kTetra);
+  const fs::path out = write_file("locked.nrrd", "old");
+  fs::permissions(out, fs::perms::owner_read);
+  expect_one_line_error(run("voxelize " + mesh.string() + " --res 8 -o " + out.string()),
+                        out.string() + ": the file exists and is read-only");
+  EXPECT_EQ(slurp(out), "old");
+  EXPECT_EQ(fs::status(out).permissions(), fs::perms::owner_read);
+  fs::permissions(out, fs::perms::owner_read | fs::perms::owner_write);
+}
+
 TEST(Cli, NanVertex) {
   const fs::path p = write_file("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
   expect_one_line_error(run("voxelize " + p.string()), p.string());

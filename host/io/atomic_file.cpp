@@ -1,5 +1,6 @@
 #include "io/atomic_file.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -21,6 +22,12 @@ void check_output_path(const fs::path& out) {
   if (!folder.empty() && !fs::is_directory(folder, ec))
     fail("{}: folder '{}' does not exist", out.string(), folder.string());
   if (fs::is_directory(out, ec)) fail("{}: is a folder", out.string());
+  // An existing file nobody may write (no write bit; root ignores the bits, so they are read here, not
+  // asked of access()) or this user may not: refused, not replaced through the rename.
+  struct stat st;
+  if (::stat(out.c_str(), &st) == 0 &&
+      ((st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(out.c_str(), W_OK) != 0))
+    fail("{}: the file exists and is read-only (left untouched)", out.string());
 }
 
 AtomicFile::AtomicFile(fs::path path) : path_(std::move(path)) {
@@ -72,6 +79,9 @@ void AtomicFile::close() {
 void AtomicFile::commit() {
   close();
   if (committed_) return;
+  // A file replaced keeps its permissions (the temporary was created with the umask's).
+  struct stat st;
+  if (::stat(path_.c_str(), &st) == 0) ::chmod(temp_.c_str(), st.st_mode & 07777);
   errno = 0;
   if (std::rename(temp_.c_str(), path_.c_str()) != 0)
     fail_io("cannot move the finished file into place", errno);

@@ -12,7 +12,8 @@
 
 namespace voxr {
 
-// Throws voxr::Error naming `out` when it names a folder, its folder does not exist, or it is a folder.
+// Throws voxr::Error naming `out` when it names a folder, its folder does not exist, it is a folder, or it is
+// an existing file that is read-only (no write permission bit, or not writable by this user).
 void check_output_path(const std::filesystem::path& out);
 
 class AtomicFile {
