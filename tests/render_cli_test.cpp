@@ -85,6 +85,38 @@ TEST(RenderCli, BuiltInSceneWithTheDefaultMethodsMatchesTheReference) {
   EXPECT_GE(psnr(a, b), 35.0) << "RMSE " << rmse(a, b);
 }
 
+// Issue 20, kind 2 (../shared/cases/render/r02_ior1_sphere.json): a clear sphere of IOR 1 and no absorption
+// is invisible: the picture of the same scene without it, in the exact methods and both references
+// (Schlick's formula drew a ring at its silhouette: F must be 0 where the indices match).
+TEST(RenderCli, IndexMatchedSphereIsInvisible) {
+  const std::string floor_and_camera =
+      R"("light": {"type": "directional", "direction": [-0.4, -1, -0.5], "intensity": [0.9, 0.9, 0.9]},
+         "camera": {"position": [0, 1.6, 3.2], "look_at": [0, 0.5, 0], "fov_deg": 45, "width": 160,
+                    "height": 120},
+         "environment": {"procedural": "checker"})";
+  const fs::path with = test::write_scratch_file(
+      "ior1-sphere.json",
+      R"({"materials": [{"name": "floor", "kind": "opaque", "color": [0.7, 0.7, 0.65]},
+                        {"name": "clear", "kind": "dielectric", "ior": 1.0, "absorption": [0, 0, 0]}],
+          "meshes": [{"generator": "plane", "params": {"size": [6, 6]}, "material": "floor"},
+                     {"generator": "sphere", "params": {"radius": 0.5, "stacks": 24, "slices": 48},
+                      "material": "clear", "transform": {"translate": [0, 0.6, 0]}}], )" +
+          floor_and_camera + "}");
+  const fs::path without = test::write_scratch_file(
+      "no-sphere.json", R"({"materials": [{"name": "floor", "kind": "opaque", "color": [0.7, 0.7, 0.65]}],
+          "meshes": [{"generator": "plane", "params": {"size": [6, 6]}, "material": "floor"}], )" +
+                            floor_and_camera + "}");
+  for (const std::string methods : {"--refraction reference", "--refraction reference-full",
+                                    "--refraction voxel-exact --shadows voxel-exact"}) {
+    const fs::path a = scratch() / "ior1-with.exr", b = scratch() / "ior1-without.exr";
+    const test::CliResult r1 = run_voxr("render " + with.string() + " " + methods + " -o " + a.string());
+    ASSERT_EQ(r1.code, 0) << methods << ": " << r1.err;
+    const test::CliResult r2 = run_voxr("render " + without.string() + " " + methods + " -o " + b.string());
+    ASSERT_EQ(r2.code, 0) << methods << ": " << r2.err;
+    EXPECT_LE(rmse(read_image(a), read_image(b)), 1e-3) << methods;
+  }
+}
+
 TEST(RenderCli, DistanceMapOptionsAreCheckedAndReported) {
   const std::string scene = std::string(VOXR_SOURCE_DIR) + "/data/scenes/glass-sphere.json";
   const fs::path image = scratch() / "dm.png";

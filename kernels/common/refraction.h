@@ -35,6 +35,7 @@ inline float voxr_refracted_cos(float cos_i, float n1, float n2) {
  * (1 - c)^5 with F0 = ((n1 - n2) / (n1 + n2))^2 and c the cosine on the less dense side (the transmitted one
  * when n1 > n2); 1 on total internal reflection. At normal incidence it is exact. */
 inline float voxr_schlick(float cos_i, float n1, float n2) {
+  if (n1 == n2) return 0.0f; /* index-matched: no interface to reflect at (the formula's (1 - c)^5 is not 0) */
   const float r = (n1 - n2) / (n1 + n2);
   const float f0 = r * r;
   float c = cos_i;
