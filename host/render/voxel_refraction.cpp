@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "grid/channel_table.h"
+#include "render/triangle_grid.h"
 #include "render/visibility_rasterizer.h"
 #include "util/error.h"
 #include "voxr_layout.h"
@@ -44,7 +45,9 @@ VoxelRefraction::~VoxelRefraction() = default;
 
 void VoxelRefraction::prepare(const RefractionOptions&) {
   voxelizer_.prepare(voxelize_options());
-  cl_.build_programs({{"refract_voxel.cl", channel_defines()}});
+  std::vector<ProgramSpec> programs = TriangleGrid::programs();  // the empty-space bits, one kernel for both
+  programs.push_back({"refract_voxel.cl", channel_defines()});
+  cl_.build_programs(programs);
 }
 
 void VoxelRefraction::set_scene(const TriangleSoup& soup, const DeviceMesh& scene_mesh,
@@ -128,9 +131,12 @@ void VoxelRefraction::build_level(Level& level, const GridSpec& spec) {
       (uint64_t(level.brick_dims.x) * level.brick_dims.y * level.brick_dims.z + 31) / 32;
   cl::Buffer& bricks = level.bricks.ensure(cl_, brick_words * 4, "refraction bricks");
   cl_.queue().enqueueFillBuffer(bricks, cl_uint(0), 0, brick_words * 4);
-  cl::Kernel kernel = cl_.kernel("refract_voxel.cl", "brick_occupancy", channel_defines());
-  cl_.launch("refraction_bricks", kernel, level.grid.words(), kGroup, level.grid.view_args(cl_),
-             level_params(level.grid, level.brick_dims), cl_ulong(level.grid.words()), bricks);
+  const ProgramSpec brick_program = TriangleGrid::programs().front();
+  cl::Kernel kernel = cl_.kernel(brick_program.file, "triangle_bricks", brick_program.defines);
+  const cl_uint4 dims = {{spec.dims.x, spec.dims.y, spec.dims.z, 0}};
+  const cl_uint4 bdims = {{level.brick_dims.x, level.brick_dims.y, level.brick_dims.z, 0}};
+  cl_.launch("refraction_bricks", kernel, level.grid.words(), kGroup, level.grid.occ.buffer,
+             cl_ulong(level.grid.words()), dims, bdims, bricks);
 }
 
 void VoxelRefraction::build(const RefractionOptions& options) {

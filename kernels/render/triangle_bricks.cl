@@ -1,7 +1,7 @@
 /* triangle_bricks.cl — the empty-space grid of the triangle lists' march (host/render/triangle_grid.h,
  * kernels/common/triangle_grid.h): one bit per VOXR_BRICK^3 voxels, set when a voxel of the brick is
- * occupied, so a ray crosses an empty brick in one step. The refraction march of refract_voxel.cl builds
- * the same grid for its own voxels (brick_occupancy).
+ * occupied, so a ray crosses an empty brick in one step. The voxel refraction march (refract_voxel.cl) reads
+ * grids built by this kernel too, one per level.
  * in: the occupancy bits; out: bricks (cleared before); shape: one work item per 32-bit occupancy word. */
 #include "voxr_layout.h"
 
@@ -10,8 +10,10 @@
 #endif
 
 /* Brick (bi, bj, bk)'s bit is ((bk * brick_dims.y + bj) * brick_dims.x + bi). */
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void triangle_bricks(
-    __global const uint* occ, ulong words, uint4 dims, uint4 brick_dims, __global uint* bricks) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void triangle_bricks(__global const uint* occ,
+                                                                                   ulong words, uint4 dims,
+                                                                                   uint4 brick_dims,
+                                                                                   __global uint* bricks) {
   const ulong w = get_global_id(0);
   if (w >= words) return;
   uint bits = occ[w];

@@ -175,28 +175,6 @@ inline ulong brick_index(const uint* brick_dims, uint i, uint j, uint k) {
   return ((ulong)(k / VOXR_BRICK) * brick_dims[1] + j / VOXR_BRICK) * brick_dims[0] + i / VOXR_BRICK;
 }
 
-/* The empty-space grid: the bit of brick (bi, bj, bk) is set when any voxel of it is occupied. One work item
- * per 32-bit occupancy word; each set bit is mapped on its own (rows may end mid-word). */
-__kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void brick_occupancy(VOXR_GRID_VIEW_PARAMS,
-                                                                                      VoxelLevelParams p,
-                                                                                      ulong words,
-                                                                                      __global uint* bricks) {
-  const ulong w = get_global_id(0);
-  if (w >= words) return;
-  const GridView g = VOXR_GRID_VIEW();
-  uint bits = g.occ[w];
-  while (bits != 0u) {
-    const uint b = 31u - clz(bits);
-    bits &= ~(1u << b);
-    const ulong v = w * 32ul + b;
-    const ulong row = v / g.dims_x;
-    const uint i = (uint)(v - row * g.dims_x), j = (uint)(row % g.dims_y), k = (uint)(row / g.dims_y);
-    if (k >= g.dims_z) continue;
-    const ulong brick = brick_index(p.brick_dims, i, j, k);
-    atomic_or(&bricks[brick >> 5], 1u << (uint)(brick & 31));
-  }
-}
-
 inline int brick_empty(const Level* l, int i, int j, int k) {
   const ulong brick = brick_index(l->brick_dims, (uint)i, (uint)j, (uint)k);
   return ((l->bricks[brick >> 5] >> (uint)(brick & 31)) & 1u) == 0u;
