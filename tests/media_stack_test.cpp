@@ -3,6 +3,8 @@
 // references' shadow rays, and every refraction method's picture of nested glass (issue 20, kind 2).
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -15,6 +17,7 @@
 #include "media_stack.h"
 #include "metrics/image_metrics.h"
 #include "reference/reference_scene.h"
+#include "util/error.h"
 
 namespace voxr {
 namespace {
@@ -133,6 +136,24 @@ TEST(MediaStack, ReferenceShadowThroughNestedGlassAbsorbsAlongTheWholeChord) {
   const ReferenceScene scene(nested_spheres(), {glass});
   const glm::vec3 t = scene.transmittance(light, under, VOXR_NO_TRIANGLE);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(t[c], std::exp(-glass.absorption[c] * chord), 1e-4f) << c;
+}
+
+TEST(MediaStack, AnInwardSphereIsACavityInTheReferenceShadow) {
+  const nlohmann::json inward = {{"radius", 0.3}, {"stacks", 24}, {"slices", 48}, {"inward", true}};
+  TriangleSoup soup;
+  soup.append(make_uv_sphere(0.6f, 24, 48), glm::mat4(1.0f), 0);
+  soup.append(make_generated("sphere", inward, "test", "params"), glm::mat4(1.0f), 0);
+  const Material glass{.name = "glass",
+                       .kind = MaterialKind::kDielectric,
+                       .ior = 1.5f,
+                       .absorption = glm::vec3(0.3f, 0.15f, 0.05f)};
+  RenderLight light{};
+  light.directional = 1u;
+  light.direction[1] = -1.0f;
+  const ReferenceScene scene(soup, {glass});
+  const glm::vec3 t = scene.transmittance(light, glm::vec3(0.0f, -1.0f, 0.0f), VOXR_NO_TRIANGLE);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(t[c], std::exp(-glass.absorption[c] * 0.6f), 1e-4f) << c;
+  EXPECT_THROW(make_generated("sphere", {{"inward", 1}}, "test", "params"), Error);
 }
 
 // The r02 scenes of issue 20: a glass sphere r 0.6 over a floor, alone or holding a sphere r 0.3 of glass
