@@ -488,7 +488,7 @@ glm::vec3 ReferenceScene::transmittance(const RenderLight& light, const glm::vec
   if (!light.directional && !(at.distance > 0.0f)) return glm::vec3(1.0f);  // the light is at the point
   const glm::vec3 dir = at.to_light;
   // The segment ends at the light; beyond it the ray goes on to infinity only to count dielectric
-  // crossings (the parity that says whether the segment starts inside a solid).
+  // crossings (their sum says how deep inside solids the segment starts).
   const float t_end = at.distance;
   const float epsilon = kStartEpsilon * m.size;
   const float merge = kMergeDistance * m.size;
