@@ -10,8 +10,8 @@
  *
  * Paths (VoxrMedia): a stack of entries, innermost last, each a material and a count of nested solids of
  * that material the path is inside.
- *   - Entering m: when the innermost entry is m, its count + 1 (an index-matched interface: n2 = n1, no bend,
- *     Schlick's F is 0); else a new entry (m, 1), n2 = m's index.
+ *   - Entering m: when the innermost entry is m, its count + 1 (n2 = n1: no interface, so no bend, F = 0 and
+ *     no event counted); else a new entry (m, 1), n2 = m's index.
  *   - Leaving m (the innermost entry of m): count > 1: count - 1, n2 = n1; the last of the innermost entry:
  *     the entry goes, n2 is the medium below (air at the bottom); the last of an outer entry (overlapping
  *     solids of different materials): the entry goes, n2 = n1 (the ray stays in the innermost medium).

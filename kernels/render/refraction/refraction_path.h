@@ -1,8 +1,8 @@
 /* refraction_path.h — what every refraction kernel (refract_voxel.cl, image_space.cl, distance_maps.cl)
  * shares: the camera ray of a pixel, the identity path of a pixel that sees no dielectric, which pixels see
  * one and the list of them a refraction kernel runs over, Snell refraction of a vector, the exact front
- * surface, and an end without a surface. OpenCL only; the interface optics themselves are in
- * refraction.h. */
+ * surface, an end without a surface, and the crossing of a dielectric interface (rp_interface: the media
+ * stack of media_stack.h). OpenCL only; the interface optics themselves are in refraction.h. */
 #ifndef VOXR_REFRACTION_PATH_H
 #define VOXR_REFRACTION_PATH_H
 
@@ -126,10 +126,10 @@ inline VoxrMedia rp_media_front(uint m0) {
  * entered or left by media_stack.h's rule; refracts by Snell's law (Schlick 1 - F into *throughput, the
  * media stack crossed) or mirrors on total internal reflection (VOXR_PATH_TIR), and counts the event; the
  * new direction goes to *new_dir. Between equal indices (a solid nested in another of the same material)
- * there is no interface: the ray goes straight on, F = 0, no event is counted, only the stack changes. Returns 0, having changed nothing but VOXR_PATH_LOST in
- * *events, when `mat` would need a new entry with the stack full (VOXR_MAX_MEDIA): nested deeper than it
- * holds, the path ends rather than guess. The caller checks the event limit. The one interface rule of
- * every refraction kernel and the reference. */
+ * there is no interface: the ray goes straight on, F = 0, no event is counted, only the stack changes.
+ * Returns 0, having changed nothing but VOXR_PATH_LOST in *events, when `mat` would need a new entry with the
+ * stack full (VOXR_MAX_MEDIA): nested deeper than it holds, the path ends rather than guess. The caller
+ * checks the event limit. The one interface rule of every refraction kernel and the reference. */
 inline int rp_interface(float3 dir, float3 n, float facing, uint mat, VoxrMedia* media,
                         __global const RenderMaterial* materials, float3* throughput, uint* events,
                         float3* new_dir) {
