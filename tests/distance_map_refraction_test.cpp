@@ -216,13 +216,14 @@ TEST(DistanceMapRefraction, TiltedSlabShiftsTheRayByTheTextbookOffset) {
 }
 
 TEST(DistanceMapRefraction, OneLayerLosesTheShellsOuterWallWhereFourFindIt) {
-  // A thick glass shell: radius 1 with a cavity of radius 0.5 (the same glass: media by parity). From the
-  // centre the cavity is the first layer and the outer sphere the second. The centre ray meets four
-  // interfaces; with one layer the outer wall is never found from inside the glass: the path is lost after
-  // three (a characteristic failure, reported as VOXR_PATH_LOST, not hidden).
-  TriangleSoup soup;
+  // A thick glass shell: radius 1 with a cavity of radius 0.5 (the same glass, wound inward: media enter and
+  // leave by winding). From the centre the cavity is the first layer and the outer sphere the second. The
+  // centre ray meets four interfaces; with one layer the outer wall is never found from inside the glass:
+  // the path is lost after three (a characteristic failure, reported as VOXR_PATH_LOST, not hidden).
+  TriangleSoup soup, cavity = make_uv_sphere(0.5f, 32, 64);
+  for (glm::uvec4& t : cavity.triangles) std::swap(t.y, t.z);
   soup.append(make_uv_sphere(1.0f, 48, 96), glm::mat4(1.0f), kGlass);
-  soup.append(make_uv_sphere(0.5f, 32, 64), glm::mat4(1.0f), kGlass);
+  soup.append(cavity, glm::mat4(1.0f), kGlass);
   const RenderedFrame four = render(soup, options(4));
   const RenderedFrame one = render(soup, options(1));
   expect_all_finite(four);

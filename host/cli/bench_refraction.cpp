@@ -32,7 +32,7 @@ constexpr const char* kSystemPython = "/usr/bin/python3";
 // What the frame includes, said once in the Markdown.
 constexpr const char* kFrameIncludes =
     "one whole frame: voxelize the scene with normals and materials (voxel methods; no inside channel: media "
-    "are told by parity) + rasterize the camera's "
+    "are told by the voxel normals' winding) + rasterize the camera's "
     "visibility + refract + the shadow method's light structure and lookup + shade + read the image back";
 
 using Row = RefractionBenchRow;

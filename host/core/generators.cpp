@@ -281,9 +281,15 @@ TriangleSoup make_generated(const std::string& name, const nlohmann::json& param
     return make_torus(major, minor, count(in, "rings", 20, 3), count(in, "sides", 20, 3));
   }
   if (name == "sphere") {
-    const JsonObjectReader in(object, where, path, {"radius", "stacks", "slices"});
-    return make_uv_sphere(positive(in, "radius", 1.0f), count(in, "stacks", 16, 2),
-                          count(in, "slices", 32, 3));
+    const JsonObjectReader in(object, where, path, {"radius", "stacks", "slices", "inward"});
+    TriangleSoup sphere =
+        make_uv_sphere(positive(in, "radius", 1.0f), count(in, "stacks", 16, 2), count(in, "slices", 32, 3));
+    // Wound inside out: a cavity in a solid of its material (media_stack.h enters and leaves by winding).
+    const nlohmann::json* inward = in.get("inward");
+    if (inward && !inward->is_boolean()) in.fail_key("inward", "must be true or false");
+    if (inward && inward->get<bool>())
+      for (glm::uvec4& t : sphere.triangles) std::swap(t.y, t.z);
+    return sphere;
   }
   if (name == "box") {
     const JsonObjectReader in(object, where, path, {"lo", "hi"});

@@ -5,6 +5,7 @@
 #include <optional>
 #include <span>
 
+#include "media_stack.h"
 #include "reference/parallel_blocks.h"
 #include "refraction.h"
 #include "render/shade_host.h"
@@ -15,8 +16,6 @@ namespace voxr {
 
 namespace {
 
-// Nested dielectrics tracked, as refract_voxel.cl's MAX_MEDIA (entering a fifth is not recorded).
-constexpr uint32_t kMaxMedia = 4;
 // Surfaces met along one path or branch at most (sheets included): a guard against rays caught between
 // coincident surfaces; a path that reaches it is lost.
 constexpr uint32_t kMaxSegments = 4096;
@@ -91,28 +90,6 @@ struct Leaving {
   }
 };
 
-// The media a path is inside, innermost last (refract_voxel.cl's media[] and depth).
-struct Media {
-  uint32_t id[kMaxMedia] = {};
-  uint32_t depth = 0;
-
-  // Where `material` is in the stack (the innermost occurrence), -1 when the path is outside it.
-  int find(uint32_t material) const {
-    int inside = -1;
-    for (uint32_t d = 0; d < depth; ++d)
-      if (id[d] == material) inside = int(d);
-    return inside;
-  }
-  void remove(int at) {
-    for (uint32_t d = uint32_t(at); d + 1 < depth; ++d) id[d] = id[d + 1];
-    --depth;
-  }
-  bool full() const { return depth >= kMaxMedia; }
-  void push(uint32_t material) {
-    if (depth < kMaxMedia) id[depth++] = material;
-  }
-};
-
 class Tracer {
  public:
   Tracer(const ReferenceScene& scene, const std::vector<RenderMaterial>& materials, const RenderLight& light,
@@ -145,8 +122,8 @@ class Tracer {
     uint32_t events = 1u;
     dir = t_dir;
     glm::vec3 here = vec(s.position), exit = here;
-    Media media;
-    media.push(s.material);
+    VoxrMedia media = voxr_media_empty();
+    voxr_media_cross(&media, s.material, 1);  // the camera is outside every medium
 
     end = no_surface();
     bool ended = false;
@@ -160,7 +137,7 @@ class Tracer {
       const SurfaceSample hit = scene_.intersect_leaving(here, dir, left.ids());
       if (hit.triangle == VOXR_NO_TRIANGLE) break;  // leaves the scene: the environment
       left = left.after(hit, merge_);
-      if (media.depth > 0) throughput *= absorption(media, hit.distance);
+      throughput *= absorption(media, hit.distance);
       here = vec(hit.position);
       const RenderMaterial& m = material(hit.material);
       if (m.kind == VOXR_MATERIAL_OPAQUE) {
@@ -172,22 +149,24 @@ class Tracer {
         throughput *= vec(m.transmittance);
         continue;
       }
-      // A dielectric interface: leave the material if inside it, else enter it.
-      const int inside = media.find(hit.material);
-      if (inside < 0 && media.full()) {  // deeper nesting than the stack holds: say so, do not guess
+      // A dielectric interface, entered or left by the triangle's winding (refraction_path.h rp_interface).
+      const int enters = voxr_media_enters(&media, hit.material, facing(dir, hit));
+      if (voxr_media_overflows(&media, hit.material, enters)) {  // nested deeper than the stack holds
         events |= VOXR_PATH_LOST;
         ended = true;
         break;
       }
-      const float n1 = top_ior(media);
-      const float n2 = next_ior(media, inside, m.ior);
+      const float n1 = ior(voxr_media_top(&media));
+      const float n2 = ior(voxr_media_far(&media, hit.material, enters));
+      if (n1 == n2) {  // index-matched: no interface (no event), straight on
+        voxr_media_cross(&media, hit.material, enters);
+        exit = here;  // as the kernels record it: the last dielectric surface crossed
+        continue;
+      }
       glm::vec3 new_dir;
       if (refract(dir, vec(hit.normal), n1, n2, new_dir, cos_i)) {
         throughput *= 1.0f - voxr_schlick(cos_i, n1, n2);
-        if (inside >= 0)
-          media.remove(inside);
-        else
-          media.push(hit.material);
+        voxr_media_cross(&media, hit.material, enters);
       } else {
         events |= VOXR_PATH_TIR;
       }
@@ -212,8 +191,8 @@ class Tracer {
   // `weight` (its largest channel) to the pixel. The camera ray's first surface is shaded whether opaque or
   // a sheet (as the primary sample of every other method); any later ray crosses sheets, multiplied by
   // their transmittance.
-  glm::vec3 full(glm::vec3 origin, const glm::vec3& dir, const Media& media, uint32_t interfaces,
-                 float weight, std::optional<Leaving> left) const {
+  glm::vec3 full(glm::vec3 origin, const glm::vec3& dir, VoxrMedia media, uint32_t interfaces, float weight,
+                 std::optional<Leaving> left) const {
     const bool camera = !left;
     glm::vec3 carried(1.0f);
     for (uint32_t segment = 0; segment < kMaxSegments; ++segment) {
@@ -221,7 +200,7 @@ class Tracer {
           left ? scene_.intersect_leaving(origin, dir, left->ids()) : scene_.intersect(origin, dir);
       if (hit.triangle == VOXR_NO_TRIANGLE) return carried * environment_.lookup(dir);
       const Leaving next_left = left ? left->after(hit, merge_) : Leaving(hit.triangle);
-      if (media.depth > 0) carried *= absorption(media, hit.distance);
+      carried *= absorption(media, hit.distance);
       const glm::vec3 here = vec(hit.position);
       const RenderMaterial& m = material(hit.material);
       if (m.kind == VOXR_MATERIAL_OPAQUE || (m.kind == VOXR_MATERIAL_SHEET && camera && segment == 0)) {
@@ -235,10 +214,17 @@ class Tracer {
         continue;
       }
       if (interfaces >= max_interfaces_) return glm::vec3(0.0f);  // a guard against loops only
-      const int inside = media.find(hit.material);
-      if (inside < 0 && media.full()) return glm::vec3(0.0f);  // nested deeper than the stack holds
-      const float n1 = top_ior(media);
-      const float n2 = next_ior(media, inside, m.ior);
+      const int enters = voxr_media_enters(&media, hit.material, facing(dir, hit));
+      if (voxr_media_overflows(&media, hit.material, enters))
+        return glm::vec3(0.0f);  // nested deeper than the stack holds
+      const float n1 = ior(voxr_media_top(&media));
+      const float n2 = ior(voxr_media_far(&media, hit.material, enters));
+      if (n1 == n2) {  // index-matched: no interface, straight on (F = 0)
+        voxr_media_cross(&media, hit.material, enters);
+        origin = here;
+        left = next_left;
+        continue;
+      }
       glm::vec3 normal = vec(hit.normal);
       if (glm::dot(dir, normal) > 0.0f) normal = -normal;
       glm::vec3 t_dir;
@@ -250,11 +236,8 @@ class Tracer {
       if (f * w >= kMinBranchWeight)
         radiance += f * full(here, reflect(dir, normal), media, interfaces + 1, f * w, next_left);
       if (refracted && (1.0f - f) * w >= kMinBranchWeight) {
-        Media next = media;
-        if (inside >= 0)
-          next.remove(inside);
-        else
-          next.push(hit.material);
+        VoxrMedia next = media;
+        voxr_media_cross(&next, hit.material, enters);
         radiance += (1.0f - f) * full(here, t_dir, next, interfaces + 1, (1.0f - f) * w, next_left);
       }
       return carried * radiance;
@@ -269,22 +252,17 @@ class Tracer {
            materials_.size());
     return materials_[id];
   }
-  float top_ior(const Media& media) const {
-    return media.depth > 0 ? material(media.id[media.depth - 1]).ior : 1.0f;
+  // The index of refraction of a medium (a material id, or VOXR_MEDIA_AIR: 1).
+  float ior(uint32_t medium) const { return medium == VOXR_MEDIA_AIR ? 1.0f : material(medium).ior; }
+  // dot(dir, the hit triangle's winding normal): < 0 where the ray enters the solid (media_stack.h).
+  float facing(const glm::vec3& dir, const SurfaceSample& hit) const {
+    return glm::dot(dir, scene_.winding_normal(hit.triangle));
   }
-
-  // The index on the far side of an interface of a material at stack position `inside` (-1: not in the
-  // stack, so entering it, of index `entering`): leaving the innermost medium reveals the one below it (or
-  // air); leaving an outer one (overlapping solids) leaves the ray in the innermost, n2 = n1
-  // (refract_voxel.cl voxr_next_ior does the same).
-  float next_ior(const Media& media, int inside, float entering) const {
-    if (inside < 0) return entering;
-    if (uint32_t(inside) + 1 == media.depth) return inside > 0 ? material(media.id[inside - 1]).ior : 1.0f;
-    return top_ior(media);
-  }
-  // Beer-Lambert over `length` world units inside the innermost medium.
-  glm::vec3 absorption(const Media& media, float length) const {
-    const glm::vec3 sigma = vec(material(media.id[media.depth - 1]).absorption);
+  // Beer-Lambert over `length` world units inside the innermost medium (1 in air).
+  glm::vec3 absorption(const VoxrMedia& media, float length) const {
+    const uint32_t top = voxr_media_top(&media);
+    if (top == VOXR_MEDIA_AIR) return glm::vec3(1.0f);
+    const glm::vec3 sigma = vec(material(top).absorption);
     return glm::exp(-sigma * length);
   }
 
@@ -332,7 +310,7 @@ RefractionReference render_refraction_reference(const ReferenceScene& scene,
         for (uint32_t x = 0; x < width; ++x) {
           const glm::vec3 dir = camera.ray_direction(float(x) + 0.5f, float(y) + 0.5f);
           out.image.pixels[y * width + x] =
-              glm::vec4(tracer.full(camera.eye, dir, Media{}, 0, 1.0f, std::nullopt), 1.0f);
+              glm::vec4(tracer.full(camera.eye, dir, voxr_media_empty(), 0, 1.0f, std::nullopt), 1.0f);
         }
     });
   }

@@ -16,7 +16,8 @@
 // triangle it left (and coincident ones passed at the same point), nothing else
 // (ReferenceScene::intersect_leaving); of coincident surfaces met together an opaque one wins, then the
 // lowest triangle id (ReferenceScene::intersect), so glass standing on a floor ends its rays on the floor.
-// Nested media are tracked as refract_voxel.cl does (a stack of at most 4).
+// Nested media are tracked as every refraction kernel tracks them (kernels/common/media_stack.h: entered or
+// left by the hit triangle's winding, ReferenceScene::winding_normal; an entry per material with a count).
 #pragma once
 
 #include <glm/glm.hpp>

@@ -14,6 +14,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "media_stack.h"
 #include "reference/parallel_blocks.h"
 #include "render/render_scene.h"
 #include "render/vertex_normals.h"
@@ -474,6 +475,12 @@ SurfaceSample ReferenceScene::intersect_leaving(const glm::vec3& origin, const g
   return m.sample(origin, d, hit, hit.t - back);
 }
 
+glm::vec3 ReferenceScene::winding_normal(uint32_t triangle) const {
+  if (triangle >= impl_->triangles.size())
+    fail("reference scene: triangle {} of {}", triangle, impl_->triangles.size());
+  return impl_->face_normal(triangle);
+}
+
 glm::vec3 ReferenceScene::transmittance(const RenderLight& light, const glm::vec3& point,
                                         uint32_t self) const {
   Impl& m = *impl_;
@@ -481,7 +488,7 @@ glm::vec3 ReferenceScene::transmittance(const RenderLight& light, const glm::vec
   if (!light.directional && !(at.distance > 0.0f)) return glm::vec3(1.0f);  // the light is at the point
   const glm::vec3 dir = at.to_light;
   // The segment ends at the light; beyond it the ray goes on to infinity only to count dielectric
-  // crossings (the parity that says whether the segment starts inside a solid).
+  // crossings (their sum says how deep inside solids the segment starts).
   const float t_end = at.distance;
   const float epsilon = kStartEpsilon * m.size;
   const float merge = kMergeDistance * m.size;
@@ -525,6 +532,7 @@ glm::vec3 ReferenceScene::transmittance(const RenderLight& light, const glm::vec
   struct Event {
     float t;
     uint32_t material;
+    bool enters;  // the group's first face of the material faces the ray (media_stack.h)
   };
   std::vector<Event> events;
   std::vector<uint32_t> faces, materials_here;
@@ -549,56 +557,46 @@ glm::vec3 ReferenceScene::transmittance(const RenderLight& light, const glm::vec
     }
     begin = end;
     if (!m.crosses(faces, dir)) continue;
-    for (uint32_t material : materials_here) events.push_back({hits[root].t, material});
+    for (uint32_t material : materials_here) {
+      uint32_t first = faces.front();
+      for (uint32_t f : faces)
+        if (m.triangles[f].w == material) {
+          first = f;
+          break;
+        }
+      events.push_back({hits[root].t, material, glm::dot(m.face_normal(first), dir) < 0.0f});
+    }
   }
 
-  // Dielectric state per material id met: inside, where the current inside interval started, its length.
-  struct Solid {
-    uint32_t material;
-    bool inside;
-    float entered;
-    float length;
-  };
-  std::vector<Solid> solids;
-  auto solid = [&](uint32_t material) -> Solid& {
-    for (Solid& s : solids)
-      if (s.material == material) return s;
-    solids.push_back({material, false, 0.0f, 0.0f});
-    return solids.back();
-  };
-
-  // Parity over the whole ray: a closed solid is crossed an even number of times by a ray that starts
-  // outside it, so an odd count means the segment starts inside.
-  for (const Event& e : events)
-    if (m.materials[e.material].kind == MaterialKind::kDielectric) {
-      Solid& s = solid(e.material);
-      s.inside = !s.inside;
-    }
-
+  // Per dielectric material met: its crossings over the whole ray (media_stack.h's ledger).
+  std::vector<VoxrSolidLedger> solids;
   glm::vec3 result(1.0f);
+  bool blocked = false;
   for (const Event& e : events) {
-    if (!(e.t < t_end)) break;
     const Material& material = m.materials[e.material];
+    const bool before = e.t < t_end;
     switch (material.kind) {
       case MaterialKind::kOpaque:
-        return glm::vec3(0.0f);
+        blocked = blocked || before;
+        break;
       case MaterialKind::kSheet:
-        result *= material.transmittance;
+        if (before) result *= material.transmittance;
         break;
       case MaterialKind::kDielectric: {
-        Solid& s = solid(e.material);
-        if (s.inside) s.length += e.t - s.entered;
-        s.inside = !s.inside;
-        s.entered = e.t;
+        auto s = std::find_if(solids.begin(), solids.end(),
+                              [&](const VoxrSolidLedger& l) { return l.material == e.material; });
+        if (s == solids.end()) s = solids.insert(solids.end(), voxr_ledger_make(e.material));
+        voxr_ledger_cross(&*s, e.t, e.enters ? 1 : 0, before ? 1 : 0);
         break;
       }
     }
+    if (blocked) return glm::vec3(0.0f);
   }
-  for (Solid& s : solids) {
-    if (s.inside && std::isfinite(t_end)) s.length += t_end - s.entered;  // a point light inside the solid
+  for (const VoxrSolidLedger& s : solids) {
+    const float length = voxr_ledger_inside_length(&s, t_end);
     const glm::vec3 sigma = m.materials[s.material].absorption;
     for (int c = 0; c < 3; ++c)
-      if (s.length > 0.0f) result[c] *= std::exp(-sigma[c] * s.length);
+      if (length > 0.0f) result[c] *= std::exp(-sigma[c] * length);
   }
   return result;
 }

@@ -38,6 +38,11 @@ class ReferenceScene {
   // Largest side of the soup's bounds (1 for an empty scene): the scale of the tolerances below.
   float scene_size() const;
 
+  // The unit normal of triangle `triangle`'s winding, cross(p1 - p0, p2 - p0) normalized (outward for a
+  // closed mesh wound counter-clockwise seen from outside; 0 for a zero-area triangle): what says whether a
+  // ray enters or leaves a dielectric (media_stack.h). Throws voxr::Error for an id out of range.
+  glm::vec3 winding_normal(uint32_t triangle) const;
+
   // The nearest hit of the ray origin + t * dir, t in (t_near, t_far), as a SurfaceSample (triangle =
   // VOXR_NO_TRIANGLE on a miss; normals unit and turned towards the origin; shading normal interpolated from
   // angle-weighted vertex normals, as the rasterizer's resolve does).
@@ -90,10 +95,14 @@ class ReferenceScene {
   // faces lie on one side of the ray, or a vertex whose faces face the ray with both sides by winding: a
   // grazed fold or corner) is no crossing. Every other group is one crossing of each distinct material in it:
   // an opaque one before the light gives 0, a sheet multiplies by its transmittance, a dielectric toggles
-  // inside/outside of its material id, and the lengths inside multiply by exp(-sigma_a * length).
-  // Inside at the start: the ray is followed past a point light to infinity, and an odd number of crossings
-  // of a dielectric over the whole ray means the segment starts inside it (dielectric meshes are closed), so
-  // receivers on or inside glass are right too; a point light inside a solid ends its last interval.
+  // in or out of its material id by the winding of the group's first face of it (media_stack.h
+  // VoxrSolidLedger), and the lengths inside multiply by exp(-sigma_a * length).
+  // Inside at the start: the ray is followed past a point light to infinity, where it is outside every
+  // solid, so the depth at the receiver is minus the sum of the crossings (+1 entered, -1 left): a receiver
+  // inside nested solids of one glass is inside all of them, and the space inside an inner solid of the same
+  // glass absorbs too. A material whose depth would be negative somewhere (open or inside-out meshes) is
+  // taken by parity as before: an odd number of crossings means the segment starts inside. A point light
+  // inside a solid ends its last interval.
   glm::vec3 transmittance(const RenderLight& light, const glm::vec3& point, uint32_t self) const;
   // The same for every sample with a triangle (others get 1), on all cores (std::thread, blocks of samples;
   // the result does not depend on the thread count).

@@ -152,7 +152,7 @@ void DistanceMapRefraction::trace(const DeviceMesh& mesh, const cl::Buffer& vert
   VOXR_CHECK_EQ(uint64_t(dielectric.pixel_count()), uint64_t(camera.width) * camera.height);
   cl_.launch("refraction", kernel, dielectric.pixel_count(), kGroup, make_render_camera(camera),
              primary_samples, dielectric, layers, environment, distances, materials, cl_uint(material_count),
-             p, end_samples, paths);
+             p, mesh.positions(), mesh.triangles(), end_samples, paths);
 }
 
 }  // namespace voxr

@@ -13,7 +13,8 @@
 // sign change is refined by kDistanceMapSecantSteps secant steps and accepted where the refined gap is
 // within a search step plus two texels' footprint (else it was a depth discontinuity of the layer). The
 // nearest layer hit refracts (or mirrors on total internal reflection) by refraction.h's model: 1 - F
-// (Schlick) per refraction, Beer-Lambert per segment inside, media tracked by parity on a stack of 4; an
+// (Schlick) per refraction, Beer-Lambert per segment inside, media on media_stack.h's stack (entered or left
+// by the winding of the triangle a layer holds: trace reads the mesh's positions and triangles); an
 // environment-layer hit ends the path there. Outside every medium the search continues, environment layer
 // only, to the scene's bounding sphere; nothing found is the environment. Failures the method has by
 // construction, not hidden: a surface hidden from the reference point behind `layers` others, or an opaque

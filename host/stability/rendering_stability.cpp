@@ -381,7 +381,8 @@ constexpr std::string_view kThinShellScene = R"({
   "meshes": [
     {"generator": "sphere", "params": {"radius": 1.0, "stacks": 48, "slices": 96}, "material": "glass",
      "transform": {"translate": [0, 1.05, 0]}},
-    {"generator": "sphere", "params": {"radius": 0.97, "stacks": 48, "slices": 96}, "material": "glass",
+    {"generator": "sphere", "params": {"radius": 0.97, "stacks": 48, "slices": 96, "inward": true},
+     "material": "glass",
      "transform": {"translate": [0, 1.05, 0]}},
     {"generator": "plane", "params": {"size": [8, 8], "subdivisions": 1}, "material": "floor"}
   ],

@@ -11,8 +11,9 @@
  *   - A sheet crossed multiplies by its transmittance; an opaque surface ends the path (shaded there, with
  * its transparent shadow); leaving the scene ends it in the environment; VOXR_PATH_MAX_EVENTS interfaces end
  *     it with nothing (VOXR_PATH_LOST).
- * Media are tracked by parity of each dielectric's surfaces (closed meshes): a ray meeting a surface of a
- * material it is inside leaves it, of any other dielectric enters it; nested media form a stack. */
+ * Media are entered and left by the surfaces' winding and counted per material (media_stack.h): a solid
+ * nested in another of the same material is no interface; nested media of different materials form a
+ * stack. */
 #ifndef VOXR_REFRACTION_H
 #define VOXR_REFRACTION_H
 

@@ -1,7 +1,8 @@
 // `--shadows voxel-exact` (beyond the papers): the straight shadow ray's exact transmittance through the
 // frame's per-voxel triangle lists (render/triangle_grid.h), computed on the device as
 // ReferenceScene::transmittance computes it (every crossing once, sheets multiplied, sigma_a x length inside
-// dielectrics, an opaque crossing blocks, the receiver's start inside glass from the crossings' parity) —
+// dielectrics, an opaque crossing blocks, the receiver's depth inside glass from the crossings' winding over
+// the whole ray, media_stack.h) —
 // kernels/render/shadow/shadow_exact.cl. No light-space map: build makes sure the frame's TriangleGrid exists
 // (resolution --shadow-res; the one voxel-exact refraction uses when its --res is the same, shared through
 // FrameContext::triangle_grids), lookup marches every sample's ray through it. Nothing is kept from frame

@@ -9,24 +9,23 @@
  * footprint (else the sign changed at a depth discontinuity of the map), is not on the triangle the ray
  * leaves, and lies at least half a texel's footprint away from where it leaves. The nearest accepted hit
  * wins: a refractor layer's is a dielectric interface (refraction.h's model: Snell with the layer's shading
- * normal, 1 - F per refraction, total internal reflection mirrors, Beer-Lambert per segment, media by
- * parity on a stack), the environment layer's ends the path on that surface. Outside every medium and past
- * the refractor's sphere the environment layer alone is searched to the scene's sphere; nothing found there
- * is the environment, nothing found inside a medium is VOXR_PATH_LOST (the maps miss a surface).
- * The searches read each map's distances alone (dm_distances: one float per texel, -1 where empty, the
- * refractor layers then the environment layer), the samples only at hits.
- *   dm_distances: distances[first + i] from samples[i]. shape: one work item per texel.
- *   distance_maps: the tracing. shape: one work item per pixel.
- * in:  camera, primary samples (width * height), refractor layers (layers * 6 * layer_res^2 SurfaceSample),
- *      environment layer (6 * layer_res^2), their distances ((layers + 1) * 6 * layer_res^2), materials
- * out: ends[pixel] (SurfaceSample), paths[pixel] (RefractionPath) */
+ * normal, 1 - F per refraction, total internal reflection mirrors, Beer-Lambert per segment, media on
+ * the stack of media_stack.h, entered or left by the winding of the triangle a layer texel holds), the
+ * environment layer's ends the path on that surface. Outside every medium and past the refractor's sphere the
+ * environment layer alone is searched to the scene's sphere; nothing found there is the environment, nothing
+ * found inside a medium is VOXR_PATH_LOST (the maps miss a surface). The searches read each map's distances
+ * alone (dm_distances: one float per texel, -1 where empty, the refractor layers then the environment layer),
+ * the samples only at hits. dm_distances: distances[first + i] from samples[i]. shape: one work item per
+ * texel. distance_maps: the tracing. shape: one work item per pixel. in:  camera, primary samples (width *
+ * height), refractor layers (layers * 6 * layer_res^2 SurfaceSample), environment layer (6 * layer_res^2),
+ * their distances ((layers + 1) * 6 * layer_res^2), materials, the mesh the layers were rasterized from
+ * (positions float4, triangles uint4) out: ends[pixel] (SurfaceSample), paths[pixel] (RefractionPath) */
 #include "refraction_path.h"
 
 #ifndef PATH_GROUP
 #define PATH_GROUP 64
 #endif
 
-#define DM_MAX_MEDIA 4 /* nested dielectrics tracked, as refract_voxel.cl */
 #define DM_MAX_MAPS 17 /* kDistanceMapMaxLayers refractor layers and the environment layer */
 
 __constant float dm_faces[6][9] = VOXR_CUBE_FACES;
@@ -177,7 +176,8 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void distance_m
     __global const uint* pixel_count, __global const SurfaceSample* layers,
     __global const SurfaceSample* environment, __global const float* distances,
     __global const RenderMaterial* materials, uint material_count, DistanceMapParams p,
-    __global SurfaceSample* ends, __global RefractionPath* paths) {
+    __global const float4* positions, __global const uint4* triangles, __global SurfaceSample* ends,
+    __global RefractionPath* paths) {
   uint id;
   if (!rp_listed_pixel(pixel_list, pixel_count, get_global_id(0), &id)) return;
   const float3 camera_dir = rp_camera_direction(&cam, id % cam.width, id / cam.width);
@@ -191,9 +191,7 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void distance_m
   float3 o = vload3(0, s.position);
   float3 exit = o;
   uint left = s.triangle;
-  uint media[DM_MAX_MEDIA];
-  uint depth = 1u;
-  media[0] = min(s.material, material_count - 1u);
+  VoxrMedia media = rp_media_front(min(s.material, material_count - 1u));
   const float3 ref = vload3(0, p.reference);
   const uint env_map = p.layers;
   SurfaceSample end = rp_no_surface();
@@ -206,14 +204,15 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void distance_m
     uint m, texel;
     int hit = dm_search(layers, environment, distances, &p, ref, o, d, p.epsilon, t_refractor, 0u, env_map,
                         left, min_t, &t, &m, &texel);
-    if (!hit && depth == 0u)
+    const uint top = voxr_media_top(&media);
+    if (!hit && top == VOXR_MEDIA_AIR)
       hit = dm_search(layers, environment, distances, &p, ref, o, d, fmax(p.epsilon, t_refractor),
                       dm_sphere_exit(v, d, p.scene_radius), env_map, env_map, left, min_t, &t, &m, &texel);
     if (!hit) {
-      events |= depth > 0u ? VOXR_PATH_LOST : VOXR_PATH_ENV;
+      events |= top != VOXR_MEDIA_AIR ? VOXR_PATH_LOST : VOXR_PATH_ENV;
       break;
     }
-    if (depth > 0u) throughput *= exp(-vload3(0, materials[media[depth - 1u]].absorption) * t);
+    if (top != VOXR_MEDIA_AIR) throughput *= exp(-vload3(0, materials[top].absorption) * t);
     const SurfaceSample h = dm_map(layers, environment, &p, m)[texel];
     if (m == env_map) {
       /* The map turned its normals towards the reference point; the path meets the surface along d. */
@@ -225,12 +224,14 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void distance_m
       }
       break;
     }
-    /* A dielectric interface: leave the material if inside it, else enter it (refract_voxel.cl's rule). */
+    /* A dielectric interface, entered or left by its triangle's winding (the map turned its normals). */
     const float3 here = o + t * d;
     const uint mat = min(h.material, material_count - 1u);
+    const uint4 tri = triangles[h.triangle];
+    const float3 p0 = positions[tri.x].xyz;
+    const float facing = dot(d, cross(positions[tri.y].xyz - p0, positions[tri.z].xyz - p0));
     float3 next;
-    if (!rp_interface(d, vload3(0, h.normal), mat, media, &depth, DM_MAX_MEDIA, materials, &throughput,
-                      &events, &next))
+    if (!rp_interface(d, vload3(0, h.normal), facing, mat, &media, materials, &throughput, &events, &next))
       break;
     exit = here;
     if ((events & VOXR_PATH_EVENTS_MASK) >= p.max_events) {

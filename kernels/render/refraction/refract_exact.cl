@@ -8,7 +8,8 @@
  * glass face is met whichever side of it rounding put the point; among coincident hits an opaque one wins,
  * then the lowest id: the reference's ReferenceScene::intersect_leaving), absorb along the segment inside the
  * innermost medium (Beer-Lambert), and at a dielectric refract by Snell's law with the interpolated shading
- * normal (surface_normal.h), Schlick 1 - F, total internal reflection, the parity media stack; a sheet
+ * normal (surface_normal.h), Schlick 1 - F, total internal reflection, the media stack
+ * (media_stack.h: entered or left by the triangle's winding); a sheet
  * multiplies its transmittance; an opaque hit ends the path with its SurfaceSample (triangle, barycentrics,
  * normals), which the shadow lookup and shading treat like any surface. Nothing: the environment. in:  the
  * triangle grid, camera, primary samples, the pixel list and its count, materials, vertex normals (float4),
@@ -21,8 +22,6 @@
 #ifndef PATH_GROUP
 #define PATH_GROUP 64
 #endif
-/* Nested dielectrics tracked (refract_voxel.cl's MAX_MEDIA, the reference's kMaxMedia). */
-#define MAX_MEDIA 4
 /* Surfaces met along one path at most (sheets included), as the reference's kMaxSegments. */
 #define MAX_SEGMENTS 4096
 /* Triangles a ray leaves at one point at most (the reference's Leaving). */
@@ -72,9 +71,7 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_ex
   uint leaving[MAX_LEAVING];
   uint leaving_count = 1u;
   leaving[0] = s.triangle;
-  uint media[MAX_MEDIA];
-  uint depth = 1u;
-  media[0] = m0;
+  VoxrMedia media = rp_media_front(m0);
 
   SurfaceSample end = rp_no_surface();
   int ended = 0;
@@ -89,7 +86,8 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_ex
                                 materials, coincide, &h))
       break;
     const SurfaceSample hit = exact_sample(&tg, normals, &h, here, dir);
-    if (depth > 0u) throughput *= exp(-vload3(0, materials[media[depth - 1u]].absorption) * hit.distance);
+    const uint top = voxr_media_top(&media);
+    if (top != VOXR_MEDIA_AIR) throughput *= exp(-vload3(0, materials[top].absorption) * hit.distance);
     here = vload3(0, hit.position);
     if (hit.distance <= coincide && leaving_count < MAX_LEAVING) {
       leaving[leaving_count++] = h.triangle;
@@ -108,9 +106,13 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_ex
       throughput *= vload3(0, mm.transmittance);
       continue;
     }
+    /* Entered or left by the triangle's winding (its outward normal), not the normal turned to the ray. */
+    const uint4 tri = tg.triangles[h.triangle];
+    const float3 p0 = tg.positions[tri.x].xyz;
+    const float facing = dot(dir, cross(tg.positions[tri.y].xyz - p0, tg.positions[tri.z].xyz - p0));
     float3 new_dir;
-    if (!rp_interface(dir, vload3(0, hit.normal), mat, media, &depth, MAX_MEDIA, materials, &throughput,
-                      &events, &new_dir)) {
+    if (!rp_interface(dir, vload3(0, hit.normal), facing, mat, &media, materials, &throughput, &events,
+                      &new_dir)) {
       ended = 1;
       break;
     }

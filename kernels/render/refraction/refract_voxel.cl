@@ -16,8 +16,6 @@
 #define PATH_GROUP 64
 #endif
 
-#define MAX_MEDIA 4 /* nested dielectrics tracked */
-
 /* The voxel's unit normal, or the normals of its 3x3x3 neighbours of the same material (channel value
  * `material`) weighted by how close their centres are to q (smooth); zero where the writers' normals cancel.
  */
@@ -71,10 +69,11 @@ inline float3 to_level(const Level* l, float3 w) {
 
 /* Beer-Lambert over the straight segment [from, to] (grid units) inside the innermost medium, if any: the
  * march applies it once per segment (at each event and at the end), not per voxel. */
-inline void absorb_segment(float3* throughput, __global const RenderMaterial* materials, const uint* media,
-                           uint depth, float3 from, float3 to, float voxel_size) {
-  if (depth == 0) return;
-  const float3 sigma = vload3(0, materials[media[depth - 1]].absorption);
+inline void absorb_segment(float3* throughput, __global const RenderMaterial* materials,
+                           const VoxrMedia* media, float3 from, float3 to, float voxel_size) {
+  const uint top = voxr_media_top(media);
+  if (top == VOXR_MEDIA_AIR) return;
+  const float3 sigma = vload3(0, materials[top].absorption);
   *throughput *= exp(-sigma * (length(to - from) * voxel_size));
 }
 
@@ -236,9 +235,7 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
   dir = t_dir;
   float3 exit_world = vload3(0, s.position);
 
-  uint media[MAX_MEDIA];
-  uint depth = 1;
-  media[0] = m0;
+  VoxrMedia media = rp_media_front(m0);
   float3 prev_normal = n_front;
   uint run_material = m0;
   int in_run = 1; /* inside the boundary run last refracted at */
@@ -296,7 +293,7 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
     const uint mat = material_of[stored];
     const RenderMaterial mm = materials[mat];
     if (mm.kind == VOXR_MATERIAL_OPAQUE) {
-      absorb_segment(&throughput, materials, media, depth, last, here, l->voxel_size);
+      absorb_segment(&throughput, materials, &media, last, here, l->voxel_size);
       float3 n = boundary_normal(&l->g, m.i, m.j, m.k, rank, stored, here, p.smooth_normals);
       if (dot(n, n) < 1e-12f) n = -dir;
       if (dot(n, dir) > 0.0f) n = -n;
@@ -329,14 +326,16 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
     if (near_last && run_material == mat && dot(n_voxel, prev_normal) > p.cos_threshold) continue;
     const float3 n =
         p.smooth_normals ? boundary_normal(&l->g, m.i, m.j, m.k, rank, stored, here, 1u) : n_voxel;
-    absorb_segment(&throughput, materials, media, depth, last, here, l->voxel_size);
+    absorb_segment(&throughput, materials, &media, last, here, l->voxel_size);
     last = here;
     float3 new_dir;
-    if (!rp_interface(dir, n, mat, media, &depth, MAX_MEDIA, materials, &throughput, &events, &new_dir)) {
+    /* Entered or left by the voxel's normal: a sum of its triangles' winding normals, outward. */
+    if (!rp_interface(dir, n, dot(dir, n_voxel), mat, &media, materials, &throughput, &events, &new_dir)) {
       ended = 1;
       break;
     }
-    if (p.two_surface && (events & VOXR_PATH_EVENTS_MASK) >= 2u) depth = 0; /* passes all later glass */
+    if (p.two_surface && (events & VOXR_PATH_EVENTS_MASK) >= 2u)
+      media = voxr_media_empty(); /* passes all later glass */
     prev_normal = n_voxel;
     run_material = mat;
     in_run = 1;
@@ -350,8 +349,8 @@ __kernel __attribute__((reqd_work_group_size(PATH_GROUP, 1, 1))) void refract_vo
     march_restart(&m, &l->g, here, dir, p.step_dda, m.i, m.j, m.k);
   }
   if (!ended) {
-    absorb_segment(&throughput, materials, media, depth, last, march_point(&m), l->voxel_size);
-    if (inside_grid && depth > 0)
+    absorb_segment(&throughput, materials, &media, last, march_point(&m), l->voxel_size);
+    if (inside_grid && media.depth > 0u)
       events |= VOXR_PATH_LOST; /* out of steps inside glass */
     else
       events |= VOXR_PATH_ENV;

@@ -1,11 +1,12 @@
 /* refraction_path.h — what every refraction kernel (refract_voxel.cl, image_space.cl, distance_maps.cl)
  * shares: the camera ray of a pixel, the identity path of a pixel that sees no dielectric, which pixels see
  * one and the list of them a refraction kernel runs over, Snell refraction of a vector, the exact front
- * surface, and an end without a surface. OpenCL only; the interface optics themselves are in
- * refraction.h. */
+ * surface, an end without a surface, and the crossing of a dielectric interface (rp_interface: the media
+ * stack of media_stack.h). OpenCL only; the interface optics themselves are in refraction.h. */
 #ifndef VOXR_REFRACTION_PATH_H
 #define VOXR_REFRACTION_PATH_H
 
+#include "media_stack.h"
 #include "refraction.h"
 #include "voxr_layout.h"
 
@@ -107,56 +108,47 @@ inline void rp_front_surface(SurfaceSample s, float3 dir, __global const RenderM
   rp_store3(path->reflect_direction, rp_reflect(dir, n_front));
 }
 
-/* The parity media stack (refraction.h) at a surface of material `mat`, for a path inside media[0..depth-1]
- * (innermost last): the index of `mat` in the stack (the surface is left), or -1 (it is entered). */
-inline int rp_medium_index(const uint* media, uint depth, uint mat) {
-  int inside = -1;
-  for (uint k = 0; k < depth; ++k)
-    if (media[k] == mat) inside = (int)k;
-  return inside;
+/* The index of refraction of medium `medium` (a material id, or VOXR_MEDIA_AIR: 1). */
+inline float rp_medium_ior(uint medium, __global const RenderMaterial* materials) {
+  return medium == VOXR_MEDIA_AIR ? 1.0f : materials[medium].ior;
 }
 
-/* The indices of refraction on both sides of that surface: n1 the innermost medium's (air: 1); n2 that of
- * `mat` when entering it, of the medium below when leaving the innermost (air at the bottom), n1 when leaving
- * an outer one (overlapping solids keep the ray in the innermost; the reference does the same: next_ior). */
-inline void rp_interface_iors(const uint* media, uint depth, int inside, uint mat,
-                              __global const RenderMaterial* materials, float* n1, float* n2) {
-  *n1 = depth > 0u ? materials[media[depth - 1u]].ior : 1.0f;
-  *n2 = inside < 0                   ? materials[mat].ior
-        : (uint)inside + 1u == depth ? (inside > 0 ? materials[media[inside - 1]].ior : 1.0f)
-                                     : *n1;
+/* The media stack of a path that has refracted into its first dielectric, material m0, at the front
+ * surface (rp_front_surface: the camera is outside every medium). */
+inline VoxrMedia rp_media_front(uint m0) {
+  VoxrMedia media = voxr_media_empty();
+  voxr_media_cross(&media, m0, 1);
+  return media;
 }
 
-/* After refracting through that surface: media[inside] is left, or `mat` entered (the caller has checked
- * that the stack has room). */
-inline void rp_cross_medium(uint* media, uint* depth, int inside, uint mat) {
-  if (inside >= 0) {
-    for (uint k = (uint)inside; k + 1u < *depth; ++k) media[k] = media[k + 1u];
-    --*depth;
-  } else {
-    media[(*depth)++] = mat;
-  }
-}
-
-/* A path along unit *dir inside media[0..*depth) meets a dielectric interface of material `mat`, unit normal
- * n (either orientation): refracts by Snell's law (Schlick 1 - F into *throughput, the media stack crossed)
- * or mirrors on total internal reflection (VOXR_PATH_TIR), and counts the event; the new direction goes to
- * *new_dir. Returns 0, having changed nothing but VOXR_PATH_LOST in *events, when `mat` would be entered
- * with the stack full (max_media): nested deeper than it holds, the path ends rather than guess. The
- * caller checks the event limit. The one interface rule of every refraction kernel and the reference. */
-inline int rp_interface(float3 dir, float3 n, uint mat, uint* media, uint* depth, uint max_media,
+/* A path along unit *dir inside `media` meets a dielectric interface of material `mat`, unit normal n
+ * (either orientation), whose winding normal (outward) makes `facing` = dot(dir, outward) with the ray:
+ * entered or left by media_stack.h's rule; refracts by Snell's law (Schlick 1 - F into *throughput, the
+ * media stack crossed) or mirrors on total internal reflection (VOXR_PATH_TIR), and counts the event; the
+ * new direction goes to *new_dir. Between equal indices (a solid nested in another of the same material)
+ * there is no interface: the ray goes straight on, F = 0, no event is counted, only the stack changes.
+ * Returns 0, having changed nothing but VOXR_PATH_LOST in *events, when `mat` would need a new entry with the
+ * stack full (VOXR_MAX_MEDIA): nested deeper than it holds, the path ends rather than guess. The caller
+ * checks the event limit. The one interface rule of every refraction kernel and the reference. */
+inline int rp_interface(float3 dir, float3 n, float facing, uint mat, VoxrMedia* media,
                         __global const RenderMaterial* materials, float3* throughput, uint* events,
                         float3* new_dir) {
-  const int inside = rp_medium_index(media, *depth, mat);
-  if (inside < 0 && *depth == max_media) {
+  const int enters = voxr_media_enters(media, mat, facing);
+  if (voxr_media_overflows(media, mat, enters)) {
     *events |= VOXR_PATH_LOST;
     return 0;
   }
-  float n1, n2, cos_i;
-  rp_interface_iors(media, *depth, inside, mat, materials, &n1, &n2);
+  const float n1 = rp_medium_ior(voxr_media_top(media), materials);
+  const float n2 = rp_medium_ior(voxr_media_far(media, mat, enters), materials);
+  float cos_i;
+  if (n1 == n2) { /* index-matched: no interface (no event), straight on */
+    *new_dir = dir;
+    voxr_media_cross(media, mat, enters);
+    return 1;
+  }
   if (rp_refract(dir, n, n1, n2, new_dir, &cos_i)) {
     *throughput *= 1.0f - voxr_schlick(cos_i, n1, n2);
-    rp_cross_medium(media, depth, inside, mat);
+    voxr_media_cross(media, mat, enters);
   } else {
     *events |= VOXR_PATH_TIR;
   }

@@ -5,7 +5,7 @@
  * Per sample with a triangle (a dielectric sample, shaded flat, and one without a triangle get 1): the ray
  * from the sample's position towards the light (a point light's position, or against a directional light's
  * direction) is marched voxel by voxel (3-D DDA; empty 8^3 bricks in one step) to the grid's exit — past a
- * point light too, where only the dielectrics' crossings count (their parity says whether the receiver lies
+ * point light too, where only the dielectrics' crossings count (they say whether the receiver lies
  * inside one). In each occupied voxel every listed triangle but the receiver's own is intersected (watertight
  * test); a hit is kept beyond VOXR_SHADOW_START_EPSILON x `scene_size` (shadow_tolerances.h: the reference's
  * kStartEpsilon) and within the voxel's [t_enter, t_exit] widened by VOXR_EXACT_SHADOW_TOLERANCE voxels (a
@@ -18,18 +18,20 @@
  * open are kept. A group where the ray only touches the surface (a shared edge whose two faces lie on one
  * side, seen along the ray; a vertex whose faces face the ray with both sides) is no crossing; any other is
  * one crossing of each distinct material in it, at its first hit: before the light an opaque crossing gives 0
- * (the march stops), a sheet multiplies its transmittance; a dielectric toggles inside/outside of its
- * material wherever it is.
- * Both hypotheses are accumulated in one pass — per dielectric material the number of crossings over the
- * whole ray and the alternating sum of the crossings' distances before the light — and the parity picks one
- * at the end: an odd count means the receiver starts inside (dielectric meshes are closed); the lengths
- * inside multiply by exp(-sigma_a x length).
+ * (the march stops), a sheet multiplies its transmittance; a dielectric's crossing enters or leaves its
+ * material by the winding of the group's first face of it, wherever it is.
+ * Every start depth is accumulated in one pass (media_stack.h VoxrSolidLedger: per dielectric material the
+ * length before the light at each sum of the crossings' signs, and the parity fallback's alternating sum)
+ * and the whole ray's sum picks one at the end: the ray ends outside everything, so the depth at the
+ * receiver is minus that sum (parity for an open or inside-out mesh); the lengths inside multiply by
+ * exp(-sigma_a x length).
  *
  * Limits (both far above the scenes': a lost hit or material changes the result, never its determinism):
  * VOXR_EXACT_SHADOW_WINDOW open hits (a full window closes its first group at once), VOXR_EXACT_SHADOW_SOLIDS
  * distinct dielectric materials per ray (more are not attenuated), VOXR_EXACT_SHADOW_GROUP distinct faces
  * and materials per group.
  * One work item per sample, deterministic (each ray's arithmetic is its own, in a fixed order). */
+#include "media_stack.h"
 #include "shadow_tolerances.h"
 #include "triangle_grid.h"
 
@@ -67,11 +69,8 @@ typedef struct SxState {
   float3 sheets; /* product of the sheets' transmittance before the light */
   int blocked;   /* an opaque crossing before the light */
   uint solids;
-  uint solid_material[VOXR_EXACT_SHADOW_SOLIDS];
-  uint solid_crossings[VOXR_EXACT_SHADOW_SOLIDS]; /* over the whole ray */
-  uint solid_before[VOXR_EXACT_SHADOW_SOLIDS];    /* before the light */
-  float solid_sum[VOXR_EXACT_SHADOW_SOLIDS];      /* -t1 + t2 - t3 ... of the crossings before the light */
-  uint open;                                      /* hits kept, sorted by (t, triangle) */
+  VoxrSolidLedger solid[VOXR_EXACT_SHADOW_SOLIDS]; /* per dielectric material met (media_stack.h) */
+  uint open;                                       /* hits kept, sorted by (t, triangle) */
   float hit_t[VOXR_EXACT_SHADOW_WINDOW];
   uint hit_triangle[VOXR_EXACT_SHADOW_WINDOW];
 } SxState;
@@ -128,8 +127,8 @@ inline int sx_crosses(const SxScene* sc, const uint4* faces, uint count, float3 
   return !(front && back);
 }
 
-/* One crossing of `material` at distance t. */
-inline void sx_event(SxState* st, const SxScene* sc, float t, uint material) {
+/* One crossing of `material` at distance t, entering it (its face's winding normal faces the ray) or not. */
+inline void sx_event(SxState* st, const SxScene* sc, float t, uint material, int enters) {
   const RenderMaterial m = sc->materials[min(material, sc->material_count - 1u)];
   const int before = t < st->t_end;
   if (m.kind == VOXR_MATERIAL_OPAQUE) {
@@ -138,20 +137,13 @@ inline void sx_event(SxState* st, const SxScene* sc, float t, uint material) {
     if (before) st->sheets *= vload3(0, m.transmittance);
   } else {
     uint s = 0;
-    while (s < st->solids && st->solid_material[s] != material) ++s;
+    while (s < st->solids && st->solid[s].material != material) ++s;
     if (s == st->solids) {
       if (s == VOXR_EXACT_SHADOW_SOLIDS) return;
-      st->solid_material[s] = material;
-      st->solid_crossings[s] = 0;
-      st->solid_before[s] = 0;
-      st->solid_sum[s] = 0.0f;
+      st->solid[s] = voxr_ledger_make(material);
       ++st->solids;
     }
-    ++st->solid_crossings[s];
-    if (before) {
-      ++st->solid_before[s];
-      st->solid_sum[s] += (st->solid_before[s] & 1u) ? -t : t;
-    }
+    voxr_ledger_cross(&st->solid[s], t, enters, before);
   }
 }
 
@@ -199,7 +191,11 @@ inline void sx_close(SxState* st, const SxScene* sc, float bound, int force) {
     }
     const float t = st->hit_t[0];
     if (sx_crosses(sc, faces, face_count, st->dir))
-      for (uint m = 0; m < material_count; ++m) sx_event(st, sc, t, materials[m]);
+      for (uint m = 0; m < material_count; ++m) {
+        uint f = 0;
+        while (f + 1u < face_count && faces[f].w != materials[m]) ++f;
+        sx_event(st, sc, t, materials[m], dot(st->dir, sx_face_normal(sc, faces[f])) < 0.0f);
+      }
     /* Keep the others, in order. */
     uint kept = 0;
     for (uint i = 0; i < st->open; ++i)
@@ -234,12 +230,9 @@ inline float3 sx_result(const SxState* st, const SxScene* sc) {
   if (st->blocked) return (float3)(0.0f);
   float3 result = st->sheets;
   for (uint s = 0; s < st->solids; ++s) {
-    const int inside = st->solid_crossings[s] & 1u; /* at the receiver */
-    const int inside_at_light = inside ^ (int)(st->solid_before[s] & 1u);
-    float length = inside ? -st->solid_sum[s] : st->solid_sum[s];
-    if (inside_at_light && isfinite(st->t_end)) length += st->t_end; /* a point light inside the solid */
+    const float length = voxr_ledger_inside_length(&st->solid[s], st->t_end);
     if (length > 0.0f) {
-      const RenderMaterial m = sc->materials[min(st->solid_material[s], sc->material_count - 1u)];
+      const RenderMaterial m = sc->materials[min(st->solid[s].material, sc->material_count - 1u)];
       result *= exp(-vload3(0, m.absorption) * length);
     }
   }
