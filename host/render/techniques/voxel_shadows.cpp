@@ -60,7 +60,8 @@ class VoxelShadows final : public ShadowTechnique {
     st.light = frame_;
     st.host_ms += ms_since(host_start) - (ctx.cl->sync_ms() - waited_before);
     st.light_triangles = light_mesh_->triangle_count();
-    map_.build(*light_mesh_, frame_, *ctx.materials, ctx.material_count, tau_, shadow_map_options(options));
+    map_.build(*light_mesh_, frame_, *ctx.materials, ctx.material_count, tau_, uniform_.blocks(),
+               shadow_map_options(options));
     st.device_bytes = map_.device_bytes();
   }
 
@@ -77,6 +78,15 @@ class VoxelShadows final : public ShadowTechnique {
     if (options.shadows == ShadowMethod::kVoxel) {
       d.suffix = fmt::format(" ({} mode)", raster_mode_name(options.mode));
       d.report["mode"] = raster_mode_name(options.mode);
+    } else if (uniform_.blocks()) {
+      d.suffix = " (every caster opaque: occupied voxels block)";
+      d.report["uniform"] = "opaque: occupied voxels block";
+    } else if (uniform_.mixed()) {
+      // A slicemap holds no material: say what the one constant does to the opaque casters.
+      d.suffix =
+          " (opaque and transparent casters: a slicemap cannot tell their voxels apart, so opaque ones "
+          "absorb like the mean transparent surface; --shadows voxel blocks them)";
+      d.report["uniform"] = "mixed: opaque casters absorb like the mean transparent surface";
     }
     return d;
   }
