@@ -108,10 +108,13 @@ std::string grazing_scene(double elevation, bool box) {
 }
 
 // Requirement (issue 20): a plane never shadows itself, whatever the light's elevation: transmittance 1 at
-// every receiver, RMSE <= 0.005 (the 10-bit transmittance packs 1 exactly, so anything above is a shadow),
-// no receiver off by more than 0.05, at every --shadow-res.
+// every receiver (r03_grazing_floor.json: RMSE 0.31 before, 59 % of receivers off), RMSE <= 0.005 (the 10-bit
+// transmittance packs 1 exactly, so anything above is a shadow), no receiver off by more than 0.05, at every
+// --shadow-res.
 TEST(LightGridShadows, LoneFloorAtGrazingLightIsLit) {
-  for (double elevation : {1.0, 2.7, 3.0})
+  // r03_grazing_floor.json's light (1, -0.05, 0.3) is 2.74 degrees up: atan(0.05 / sqrt(1.09)).
+  const double r03 = std::atan(0.05 / std::sqrt(1.09)) * 180.0 / std::numbers::pi;
+  for (double elevation : {1.0, r03, 3.0})
     for (uint32_t res : {32u, 64u, 128u})
       for (const MethodCase& m : kLightGridMethods) {
         const ShadowResult r = render_shadows(grazing_scene(elevation, false), m.method, m.mode, res);
