@@ -37,7 +37,7 @@ struct LightFrame {
   glm::mat3 view{1.0f};                       // projective: rows are the light view's x, y, z axes
   float near_depth = 0.0f, far_depth = 0.0f;  // projective: view depths of the first and last slab faces
   // An orthographic frame for a point light so far from the receivers that its rays are parallel to within
-  // a hundredth of a column (light_frame.cpp kParallelColumns): its axis is the ray to the receivers' centre.
+  // a tenth of a column (light_frame.cpp kParallelColumns): its axis is the ray to the receivers' centre.
   bool parallel_point = false;
 
   bool projective() const { return params.projective != 0; }
@@ -58,7 +58,7 @@ Bounds visible_bounds(const Bounds& scene, const CameraFrame& camera);
 
 // Fits the light's grid: `resolution` columns along the longer side of its footprint, `resolution` slabs
 // (orthographic: as many cubic voxels as the depth needs, at most 4 x resolution). A point light gets a
-// frustum unless it is so far that parallel rays along its axis move no shadow by a hundredth of a column
+// frustum unless it is so far that parallel rays along its axis move no shadow by a tenth of a column
 // (the largest angle of its rays to the axis x the depth from the nearest caster to the farthest receiver):
 // then an orthographic grid (LightFrame::parallel_point), since a frustum's slabs, uniform in 1/depth, fall
 // below float resolution as the light recedes. The footprint is the
