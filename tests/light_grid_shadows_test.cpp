@@ -143,19 +143,21 @@ TEST(LightGridShadows, FloorWithBoxAtGrazingLightKeepsTheBoxShadow) {
   }
 }
 
-// A red sphere r 0.5 over a 6 x 6 floor, `light` the light's JSON.
-std::string sphere_scene(const std::string& light) {
+// A red sphere r 0.5 over a 6 x 6 floor, `light` the light's JSON; `more_materials` and `more_meshes` (each
+// starting with a comma) are appended to the lists.
+std::string sphere_scene(const std::string& light, const std::string& more_materials = "",
+                         const std::string& more_meshes = "") {
   return fmt::format(R"({{
   "materials": [{{"name": "floor", "kind": "opaque", "color": [0.8, 0.8, 0.8]}},
-                {{"name": "red", "kind": "opaque", "color": [0.8, 0.2, 0.2]}}],
+                {{"name": "red", "kind": "opaque", "color": [0.8, 0.2, 0.2]}}{}],
   "meshes": [{{"generator": "plane", "params": {{"size": [6, 6]}}, "material": "floor"}},
              {{"generator": "sphere", "params": {{"radius": 0.5}}, "material": "red",
-              "transform": {{"translate": [0, 0.6, 0]}}}}],
+              "transform": {{"translate": [0, 0.6, 0]}}}}{}],
   "light": {},
   "camera": {{"position": [0, 2, 4], "look_at": [0, 0.4, 0], "fov_deg": 45, "width": 160, "height": 120}},
   "environment": {{"color": [0.3, 0.3, 0.3]}}
 }})",
-                     light);
+                     more_materials, more_meshes, light);
 }
 
 std::string point_light_at(double height) {
@@ -186,6 +188,21 @@ TEST(LightGridShadows, FarPointLightKeepsTheSphereShadow) {
 TEST(LightGridShadows, UniformBlocksWithOpaqueCasters) {
   const std::string json =
       sphere_scene(R"({"type": "directional", "direction": [-0.3, -1, -0.2], "intensity": [1, 1, 1]})");
+  const ShadowResult r = render_shadows(json, ShadowMethod::kUniform, RasterMode::kCenter, 64);
+  EXPECT_LE(r.error.rmse, 0.05);
+  ASSERT_GT(r.dark_mean, -1.0);
+  EXPECT_LE(r.dark_mean, 0.1);
+}
+
+// Requirement (issue 20): among transparent casters too (a leaf of transmittance 0.5 beside the sphere), the
+// sphere's umbra stays dark (mean <= 0.1; the leaf's constant alone left 0.25 for two crossings) and the
+// RMSE <= 0.05.
+TEST(LightGridShadows, UniformBlocksOpaqueCastersAmongTransparentOnes) {
+  const std::string json = sphere_scene(
+      R"({"type": "directional", "direction": [-0.3, -1, -0.2], "intensity": [1, 1, 1]})",
+      R"(, {"name": "leaf", "kind": "sheet", "color": [0.3, 0.6, 0.2], "transmittance": [0.5, 0.5, 0.5]})",
+      R"(, {"generator": "plane", "params": {"size": [0.8, 0.8]}, "material": "leaf",
+            "transform": {"translate": [1.4, 0.9, 0.4]}})");
   const ShadowResult r = render_shadows(json, ShadowMethod::kUniform, RasterMode::kCenter, 64);
   EXPECT_LE(r.error.rmse, 0.05);
   ASSERT_GT(r.dark_mean, -1.0);

@@ -69,14 +69,16 @@ void TransparentShadowMap::build(const DeviceMesh& light_mesh, const LightFrame&
 
 void TransparentShadowMap::lookup(const cl::Buffer& samples, uint32_t count, const cl::Buffer& materials,
                                   uint32_t material_count, const RenderLight& light,
-                                  const ShadowMapOptions& options, cl::Buffer& transmittance) {
+                                  const ShadowMapOptions& options, cl::Buffer& transmittance,
+                                  const cl::Buffer* opaque_depth) {
   cl::Kernel kernel = cl_.kernel("shadow_lookup.cl", "shadow_lookup");
   // Conservative grids mark every voxel a receiver's own surface touches in a column: half the plane's
   // depth span over a column before its crossing (shadow_frame.h sf_column_depth).
   const float slope_bias =
       options.method == ShadowMethod::kVoxel && options.mode == RasterMode::kConservative ? 0.5f : 0.0f;
   cl_.launch("shadow_lookup", kernel, count, kGroup, samples, cl_uint(count), materials,
-             cl_uint(material_count), light, frame_.params, volume_.buffer, tails_.buffer, options.bias,
+             cl_uint(material_count), light, frame_.params, volume_.buffer, tails_.buffer,
+             opaque_depth ? *opaque_depth : tails_.buffer, cl_uint(opaque_depth ? 1 : 0), options.bias,
              slope_bias, options.normal_offset, transmittance);
 }
 

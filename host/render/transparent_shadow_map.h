@@ -49,8 +49,8 @@ struct UniformAbsorption {
   // The mean per-crossing optical depth with dielectrics `voxel_length` thick.
   glm::vec3 at(float voxel_length) const;
   // Whether the slicemap's voxels all block (Eisemann & Decoret's opaque case): opaque triangles and no
-  // transparent one. A slicemap cannot tell opaque voxels from transparent ones: where the kinds mix, opaque
-  // casters absorb like the mean transparent surface (mixed() says so).
+  // transparent one. A slicemap cannot tell opaque voxels from transparent ones: where the kinds mix
+  // (mixed()), the opaque casters block through a depth map of their own (TransparentShadowMap::lookup).
   bool blocks() const { return triangles == 0 && opaque > 0; }
   bool mixed() const { return triangles > 0 && opaque > 0; }
 };
@@ -75,9 +75,11 @@ class TransparentShadowMap {
              const ShadowMapOptions& options, VoxelizeStats* stats = nullptr);
 
   // Transmittance (float4, RGB + 1) of `count` SurfaceSamples towards `light`: 1 where a sample has no
-  // triangle or shows a dielectric.
+  // triangle or shows a dielectric. `opaque_depth`: a depth map of the opaque casters on the same frame
+  // (LightSpaceMaps::opaque_depth), which then block too (uniform where opaque and transparent casters mix).
   void lookup(const cl::Buffer& samples, uint32_t count, const cl::Buffer& materials, uint32_t material_count,
-              const RenderLight& light, const ShadowMapOptions& options, cl::Buffer& transmittance);
+              const RenderLight& light, const ShadowMapOptions& options, cl::Buffer& transmittance,
+              const cl::Buffer* opaque_depth = nullptr);
 
   const DeviceVoxelGrid& grid() const { return grid_; }
   uint64_t device_bytes() const;  // the grid's channels and the transmittance volume

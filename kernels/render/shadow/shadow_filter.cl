@@ -85,10 +85,7 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_m
         const int i = clamp((int)fx + di, 0, w - 1), j = clamp((int)fy + dj, 0, h - 1);
         const ulong texel = (ulong)(h - 1 - j) * (ulong)w + (ulong)i;
         const float receiver = sf_column_depth(&frame, g, slope, i, j, bias, 0.0f) / (float)frame.dims[2];
-        const ulong word = depth[texel];
-        const float occluder =
-            (uint)(word & 0xffffffffu) == VOXR_NO_TRIANGLE ? 2.0f : as_float((uint)(word >> 32));
-        float3 t = receiver <= occluder ? (float3)(1.0f) : (float3)(0.0f);
+        float3 t = (float3)(sf_depth_lit(depth, texel, receiver));
         if (filter) {
           const int3 q = vload3(texel, tau);
           t *= exp(-max(convert_float3(q), 0.0f) / FILTER_ONE);

@@ -94,6 +94,15 @@ inline int sf_receiver(const ShadowFrame* f, const RenderLight* light, const Sur
   return grid->x >= 0.0f && grid->y >= 0.0f && grid->x <= (float)f->dims[0] && grid->y <= (float)f->dims[1];
 }
 
+/* 1 where a receiver at depth `receiver` (grid depth / dims.z) sees the light past depth-map texel `texel`
+ * (visibility words, host/render/light_space_maps.h: the nearest caster's depth in the high 32 bits, its
+ * triangle in the low; VOXR_NO_TRIANGLE: no caster), else 0. */
+inline float sf_depth_lit(__global const ulong* depth, ulong texel, float receiver) {
+  const ulong word = depth[texel];
+  const float occluder = (uint)(word & 0xffffffffu) == VOXR_NO_TRIANGLE ? 2.0f : as_float((uint)(word >> 32));
+  return receiver <= occluder ? 1.0f : 0.0f;
+}
+
 /* Transmittance volume: one word per voxel, column-major (k fastest: a column is contiguous), RGB in 10 bits
  * each, the transmittance from the light to the far face of the voxel's slab. */
 inline uint sf_pack(float3 t) {
