@@ -50,6 +50,7 @@ void expect_same_frame(const LightFrame& host, const LightFrame& device) {
   EXPECT_EQ(host.grid.voxel_size, device.grid.voxel_size);
   EXPECT_EQ(host.near_depth, device.near_depth);
   EXPECT_EQ(host.far_depth, device.far_depth);
+  EXPECT_EQ(host.parallel_point, device.parallel_point);
 }
 
 VoxelGrid voxelize(ClRuntime& cl, const DeviceMesh& mesh, const GridSpec& grid, RasterMode mode) {
@@ -85,13 +86,26 @@ uint64_t expect_same_as_host(const TriangleSoup& soup, const RenderLight& light,
   for (RasterMode mode : {RasterMode::kCenter, RasterMode::kConservative}) {
     const VoxelGrid h = voxelize(cl, host_mesh, host.grid, mode);
     const VoxelGrid d = voxelize(cl, device_mesh, device.grid, mode);
-    EXPECT_GT(h.voxels_set, 0u);
+    EXPECT_GT(h.voxels_set, 0u) << host.describe() << " mode " << int(mode);
     EXPECT_EQ(h.voxels_set, d.voxels_set);
     EXPECT_TRUE(h.occ == d.occ) << "occupancy differs, mode " << int(mode);
     EXPECT_EQ(h.count, d.count);
     EXPECT_EQ(h.material, d.material);
   }
   return host_mesh.triangles_split();
+}
+
+// A point light 1e5 units above a floor and a leaf: taken as parallel (an orthographic frame); with a caster
+// halfway to the light, a frustum again. The device decides as the host.
+TEST(DeviceLightFrame, FarPointLightMatchesTheHost) {
+  TriangleSoup soup;
+  test::add_square(soup, 0.0f, -3.0f, 3.0f, 0);
+  test::add_square(soup, 1.0f, -0.5f, 0.5f, 1);
+  const Bounds receivers = soup.bounds();
+  const RenderLight light = test::point_light({0.0f, 1e5f, 0.0f});
+  expect_same_as_host(soup, light, receivers, 64);
+  test::add_square(soup, 5e4f, -0.5f, 0.5f, 1);
+  expect_same_as_host(soup, light, receivers, 64);
 }
 
 TEST(DeviceLightFrame, TreeUnderAPointLightMatchesTheHost) {

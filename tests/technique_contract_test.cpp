@@ -94,10 +94,10 @@ Rendered render(const TriangleSoup& soup, const std::vector<Material>& materials
 
 // ---- shadows ----
 
-// Each row's transmittance in an opaque slab's umbra: 0, except none (every receiver lit) and uniform, whose
-// one absorption constant is the mean over transparent triangles (Eisemann & Decoret §5): none here, so 0.
+// Each row's transmittance in an opaque slab's umbra: 0, except none (every receiver lit). Uniform too: with
+// only opaque casters its occupied voxels block (Eisemann & Decoret's opaque case; issue 20 kind 4).
 float umbra_transmittance(ShadowMethod m) {
-  return m == ShadowMethod::kNone || m == ShadowMethod::kUniform ? 1.0f : 0.0f;
+  return m == ShadowMethod::kNone ? 1.0f : 0.0f;
 }
 // The light-space grids and maps, and voxel-exact's triangle grid.
 bool has_light_structure(ShadowMethod m) {

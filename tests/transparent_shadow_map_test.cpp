@@ -64,8 +64,8 @@ std::vector<glm::vec3> shadow_at(const ShadowCase& c, const std::vector<glm::vec
     DeviceMesh mesh = upload_mesh(cl, frame.projective() ? projected : c.soup, frame.grid, SplitCull::kGrid);
     Voxelizer voxelizer(cl);
     TransparentShadowMap map(cl, voxelizer);
-    map.build(mesh, frame, materials, m, uniform_optical_depth(c.soup, c.materials, frame.params.voxel_size),
-              options);
+    const UniformAbsorption u = uniform_absorption(c.soup, c.materials);
+    map.build(mesh, frame, materials, m, u.at(frame.params.voxel_size), u.blocks(), options);
     map.lookup(sample_buffer, n, materials, m, light, options, out);
   }
   std::vector<glm::vec4> t(samples.size());

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "cl/scan.h"
@@ -18,6 +19,15 @@ namespace voxr {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// A point light is taken as parallel (an orthographic frame along the ray to the receivers' centre) when that
+// moves no shadow by more than this share of a column (a tenth of the column every bilinear lookup blurs an
+// edge over): the rays' angle to the axis (at most the receivers' largest, tan t) times the depth from the
+// nearest caster to the farthest receiver. Far lights need it: a frustum's slabs, uniform in 1/depth, lose
+// float resolution as depth z / depth range d grows, by about n z / d x 2^-24 slabs (n slabs); a light 1e5
+// units above a scene of size 1 lost every shadow. Where the parallel frame is refused (z / d below about
+// n / (2 x 0.1)), that error stays under n^2 x 3e-7 slabs: 0.02 at n = 256, 0.3 at 1024.
+constexpr float kParallelColumns = 0.1f;
 
 std::array<glm::vec3, 8> corners(const Bounds& b) {
   std::array<glm::vec3, 8> c;
@@ -52,7 +62,8 @@ glm::vec3 LightFrame::to_grid(const glm::vec3& p) const {
 std::string LightFrame::describe() const {
   const glm::uvec3 d(params.dims[0], params.dims[1], params.dims[2]);
   if (!projective())
-    return fmt::format("orthographic {} x {} x {}, voxel {:.4g}", d.x, d.y, d.z, params.voxel_size);
+    return fmt::format("orthographic {} x {} x {}, voxel {:.4g}{}", d.x, d.y, d.z, params.voxel_size,
+                       parallel_point ? " (point light far enough for parallel rays)" : "");
   const float u1 = params.u0 + float(d.x) / params.inv_du, v1 = params.v0 + float(d.y) / params.inv_dv;
   const float ax = glm::degrees(std::atan(u1) - std::atan(params.u0));
   const float ay = glm::degrees(std::atan(v1) - std::atan(params.v0));
@@ -147,9 +158,26 @@ struct FitSetup {
   Footprint receiving;
   float receivers_near = kInf, receivers_far = -kInf;
   float depth_floor = -kInf;
+  // A point light taken as parallel: the tangent of the largest angle between its rays to the receivers'
+  // box and the frame's axis (0 otherwise).
+  float parallel_tan = 0.0f;
 };
 
-FitSetup setup_fit(const RenderLight& light, const Bounds& receivers, uint32_t resolution) {
+// Whether a point light taken as parallel (s.parallel_tan > 0) moves a shadow by more than kParallelColumns
+// of a column across the footprint (the columns `n` asks for, before cubic voxels widen them to reach the
+// depth), casters reaching to depth `near`: then the frame must be a frustum after all.
+bool parallel_too_coarse(const FitSetup& s, const Footprint& fp, float near, uint32_t n) {
+  if (s.parallel_tan == 0.0f) return false;
+  const float from = near < s.receivers_far ? near : s.receivers_near;
+  const glm::vec2 extent = glm::max(fp.hi - fp.lo, glm::vec2(1e-6f));
+  const float column = std::max(extent.x, extent.y) / float(n - 2);
+  return !(s.parallel_tan * (s.receivers_far - from) <= kParallelColumns * column);
+}
+
+// `allow_parallel`: a point light far enough from the receivers (their own depth range, kParallelColumns)
+// gets an orthographic frame; the caller checks the casters with parallel_too_coarse and asks again without.
+FitSetup setup_fit(const RenderLight& light, const Bounds& receivers, uint32_t resolution,
+                   bool allow_parallel) {
   check_resolution(resolution);
   if (receivers.empty()) fail("nothing to shadow: the scene's visible bounds are empty");
   FitSetup s;
@@ -182,6 +210,30 @@ FitSetup setup_fit(const RenderLight& light, const Bounds& receivers, uint32_t r
     s.receiving.extend(glm::vec2(q));
     s.receivers_near = std::min(s.receivers_near, q.z);
     s.receivers_far = std::max(s.receivers_far, q.z);
+  }
+  if (space.projective && allow_parallel) {
+    // The frustum's columns at the nearest receiver, in world units, against the shift of a parallel frame
+    // over the receivers' own depth range.
+    float tan = 0.0f;
+    for (const glm::vec3& c : s.rc) {
+      const glm::vec3 q = space(c);
+      tan = std::max({tan, std::abs(q.x), std::abs(q.y)});
+    }
+    const glm::vec2 extent = s.receiving.hi - s.receiving.lo;
+    const float column = std::max(extent.x, extent.y) * s.receivers_near / float(resolution - 2);
+    if (tan * (s.receivers_far - s.receivers_near) <= kParallelColumns * column) {
+      space.projective = false;
+      s.parallel_tan = std::max(tan, std::numeric_limits<float>::min());
+      s.receiving = Footprint{};
+      s.receivers_near = kInf;
+      s.receivers_far = -kInf;
+      for (const glm::vec3& c : s.rc) {
+        const glm::vec3 q = space(c);
+        s.receiving.extend(glm::vec2(q));
+        s.receivers_near = std::min(s.receivers_near, q.z);
+        s.receivers_far = std::max(s.receivers_far, q.z);
+      }
+    }
   }
   // Frustum slabs are uniform in 1/depth: a near plane close to the light would spend them all there. Casters
   // nearer the light than a tenth of the nearest receiver's depth are cut there (their shadow then starts at
@@ -227,6 +279,7 @@ LightFrame finish_fit(const FitSetup& s, const Footprint& fp, float near, uint32
     std::copy(m.begin(), m.end(), f.params.to_light);
     f.params.projective = 0;
     f.params.voxel_size = h;
+    f.parallel_point = s.parallel_tan > 0.0f;
   } else {
     const float z_near = std::max(s.depth_floor, near * 0.999f), z_far = s.receivers_far * 1.001f;
     f.grid = GridSpec{};
@@ -257,11 +310,11 @@ LightFrame finish_fit(const FitSetup& s, const Footprint& fp, float near, uint32
   return f;
 }
 
-}  // namespace
-
-LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, const TriangleSoup& casters,
-                           uint32_t resolution) {
-  const FitSetup s = setup_fit(light, receivers, resolution);
+// fit_light_frame with or without taking a point light as parallel: nothing when the casters make a parallel
+// frame too coarse (parallel_too_coarse).
+std::optional<LightFrame> fit_attempt(const RenderLight& light, const Bounds& receivers,
+                                      const TriangleSoup& casters, uint32_t resolution, bool allow_parallel) {
+  const FitSetup s = setup_fit(light, receivers, resolution, allow_parallel);
   const LightSpace& space = s.space;
   // The columns of the triangles that can shadow a receiver, and their nearest depth.
   Footprint casting;
@@ -302,7 +355,16 @@ LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, co
   float near = kInf;
   for (const Caster& k : casting_triangles)
     if (k.near < near && k.box.overlaps(fp)) near = k.near;
+  if (parallel_too_coarse(s, fp, near, resolution)) return std::nullopt;
   return finish_fit(s, fp, near, resolution, casters.anchor);
+}
+
+}  // namespace
+
+LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, const TriangleSoup& casters,
+                           uint32_t resolution) {
+  const std::optional<LightFrame> f = fit_attempt(light, receivers, casters, resolution, true);
+  return f ? *f : *fit_attempt(light, receivers, casters, resolution, false);  // a frustum always fits
 }
 
 TriangleSoup project_to_light_grid(const TriangleSoup& soup, const LightFrame& frame) {
@@ -425,7 +487,14 @@ std::vector<ProgramSpec> DeviceLightFrame::programs() const {
 
 const LightFrame& DeviceLightFrame::fit(const RenderLight& light, const Bounds& receivers,
                                         const DeviceMesh& casters, uint32_t resolution) {
-  const FitSetup s = setup_fit(light, receivers, resolution);
+  if (!fit_attempt(light, receivers, casters, resolution, true))
+    fit_attempt(light, receivers, casters, resolution, false);  // a frustum always fits
+  return frame_;
+}
+
+bool DeviceLightFrame::fit_attempt(const RenderLight& light, const Bounds& receivers,
+                                   const DeviceMesh& casters, uint32_t resolution, bool allow_parallel) {
+  const FitSetup s = setup_fit(light, receivers, resolution, allow_parallel);
   const Defines defines = light_defines();
   cl::Buffer& reduce = reduce_.ensure(cl_, kSlots * 4, "light fit reductions");
   cl::Kernel init = cl_.kernel("light_project.cl", "light_reduce_init", defines);
@@ -440,6 +509,7 @@ const LightFrame& DeviceLightFrame::fit(const RenderLight& light, const Bounds& 
   set4(args.light, light.directional ? glm::vec3(light.direction[0], light.direction[1], light.direction[2])
                                      : s.space.light);
   args.projective = s.space.projective ? 1 : 0;
+  args.point = light.directional ? 0 : 1;
   args.eps = s.eps;
   args.depth_floor = s.depth_floor;
   const cl_uint n = casters.triangle_count();
@@ -456,9 +526,10 @@ const LightFrame& DeviceLightFrame::fit(const RenderLight& light, const Bounds& 
   Footprint casting_box;
   casting_box.lo = glm::vec2(key_value(r[kCast + 0]), key_value(r[kCast + 1]));
   casting_box.hi = glm::vec2(key_value(r[kCast + 2]), key_value(r[kCast + 3]));
-  frame_ = finish_fit(s, cut_footprint(s.receiving, casting_box), key_value(r[kNear]), resolution,
-                      casters.anchor());
-  return frame_;
+  const Footprint fp = cut_footprint(s.receiving, casting_box);
+  if (parallel_too_coarse(s, fp, key_value(r[kNear]), resolution)) return false;
+  frame_ = finish_fit(s, fp, key_value(r[kNear]), resolution, casters.anchor());
+  return true;
 }
 
 const DeviceMesh& DeviceLightFrame::light_mesh(const DeviceMesh& casters) {

@@ -36,6 +36,9 @@ struct LightFrame {
   glm::vec3 light_position{0.0f};             // projective: anchor-relative
   glm::mat3 view{1.0f};                       // projective: rows are the light view's x, y, z axes
   float near_depth = 0.0f, far_depth = 0.0f;  // projective: view depths of the first and last slab faces
+  // An orthographic frame for a point light so far from the receivers that its rays are parallel to within
+  // a tenth of a column (light_frame.cpp kParallelColumns): its axis is the ray to the receivers' centre.
+  bool parallel_point = false;
 
   bool projective() const { return params.projective != 0; }
   // Anchor-relative world point -> grid units (the kernels' sf_to_grid, on the host).
@@ -54,7 +57,11 @@ struct LightFrame {
 Bounds visible_bounds(const Bounds& scene, const CameraFrame& camera);
 
 // Fits the light's grid: `resolution` columns along the longer side of its footprint, `resolution` slabs
-// (orthographic: as many cubic voxels as the depth needs, at most 4 x resolution). The footprint is the
+// (orthographic: as many cubic voxels as the depth needs, at most 4 x resolution). A point light gets a
+// frustum unless it is so far that parallel rays along its axis move no shadow by a tenth of a column
+// (the largest angle of its rays to the axis x the depth from the nearest caster to the farthest receiver):
+// then an orthographic grid (LightFrame::parallel_point), since a frustum's slabs, uniform in 1/depth, fall
+// below float resolution as the light recedes. The footprint is the
 // receivers' columns (`receivers`: anchor-relative bounds of what the camera sees) cut down to the columns of
 // the triangles that can shadow a receiver (some corner of the receivers' box lies beyond the triangle's
 // plane, away from the light: a floor under everything casts nothing visible); the depth runs from the
@@ -110,6 +117,11 @@ class DeviceLightFrame {
   // (an allocation, a launch) never leaves a read into a stack that is gone.
   std::vector<uint32_t> reduce_host_;
   std::unique_ptr<DeviceMesh> mesh_;
+
+  // fit() with or without taking a point light as parallel; false (frame_ untouched) when the casters make a
+  // parallel frame too coarse.
+  bool fit_attempt(const RenderLight& light, const Bounds& receivers, const DeviceMesh& casters,
+                   uint32_t resolution, bool allow_parallel);
 };
 
 }  // namespace voxr

@@ -11,6 +11,17 @@ constexpr uint32_t kOpaqueKinds = 1u << VOXR_MATERIAL_OPAQUE;
 constexpr uint32_t kTransparentKinds = (1u << VOXR_MATERIAL_SHEET) | (1u << VOXR_MATERIAL_DIELECTRIC);
 constexpr uint32_t kAllKinds = kOpaqueKinds | kTransparentKinds;
 
+// The light's view of `frame` for the rasterizer, one texel per column, drawing the material kinds of
+// `kind_mask`.
+RasterTarget light_target(const LightFrame& frame, uint32_t kind_mask) {
+  RasterTarget target;
+  target.view_projection = light_view_projection(frame);
+  target.width = frame.params.dims[0];
+  target.height = frame.params.dims[1];
+  target.kind_mask = kind_mask;
+  return target;
+}
+
 }  // namespace
 
 glm::mat4 light_view_projection(const LightFrame& frame) {
@@ -49,16 +60,19 @@ std::vector<ProgramSpec> LightSpaceMaps::programs() const {
   return {{"shadow_filter.cl", {}}};
 }
 
+const cl::Buffer& LightSpaceMaps::opaque_depth(const DeviceMesh& mesh, const LightFrame& frame,
+                                               const cl::Buffer& materials, uint32_t material_count) {
+  rasterizer_.bin(mesh, light_target(frame, kOpaqueKinds), materials, material_count, opaque_bins_);
+  rasterizer_.rasterize_depth(opaque_bins_, depth_);
+  return depth_.buffer;
+}
+
 void LightSpaceMaps::build(const DeviceMesh& mesh, const LightFrame& frame, const RenderLight& light,
                            const cl::Buffer& materials, uint32_t material_count, ShadowMethod method) {
   VOXR_CHECK(method == ShadowMethod::kOpaque || method == ShadowMethod::kFilter);
   frame_ = frame;
   method_ = method;
-  RasterTarget target;
-  target.view_projection = light_view_projection(frame);
-  target.width = frame.params.dims[0];
-  target.height = frame.params.dims[1];
-  target.kind_mask = method == ShadowMethod::kOpaque ? kAllKinds : kOpaqueKinds;
+  RasterTarget target = light_target(frame, method == ShadowMethod::kOpaque ? kAllKinds : kOpaqueKinds);
   rasterizer_.bin(mesh, target, materials, material_count, opaque_bins_);
   rasterizer_.rasterize_depth(opaque_bins_, depth_);
   if (method != ShadowMethod::kFilter) return;

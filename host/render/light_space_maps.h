@@ -35,6 +35,12 @@ class LightSpaceMaps {
   void build(const DeviceMesh& mesh, const LightFrame& frame, const RenderLight& light,
              const cl::Buffer& materials, uint32_t material_count, ShadowMethod method);
 
+  // The depth map of the opaque casters alone on `frame` (visibility words, texel (x, y) = column (x, dims.y
+  // - 1 - y)), for TransparentShadowMap::lookup: the uniform method's opaque casters block through it where
+  // they mix with transparent ones. Valid until the next build.
+  const cl::Buffer& opaque_depth(const DeviceMesh& mesh, const LightFrame& frame, const cl::Buffer& materials,
+                                 uint32_t material_count);
+
   // Transmittance (float4) of `count` SurfaceSamples, as TransparentShadowMap::lookup.
   void lookup(const cl::Buffer& samples, uint32_t count, const cl::Buffer& materials, uint32_t material_count,
               const RenderLight& light, float bias, float normal_offset, cl::Buffer& transmittance);

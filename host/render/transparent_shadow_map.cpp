@@ -10,7 +10,8 @@ namespace voxr {
 namespace {
 
 constexpr size_t kGroup = 64;
-constexpr uint32_t kShadowVoxel = 0, kShadowUniform = 1;  // shadow_transmittance.cl SHADOW_*
+// shadow_transmittance.cl SHADOW_*
+constexpr uint32_t kShadowVoxel = 0, kShadowUniform = 1, kShadowUniformOpaque = 2;
 
 VoxelizeOptions voxelize_options(const ShadowMapOptions& options) {
   VoxelizeOptions v;
@@ -37,8 +38,8 @@ void TransparentShadowMap::prepare(const ShadowMapOptions& options) {
 
 void TransparentShadowMap::build(const DeviceMesh& light_mesh, const LightFrame& frame,
                                  const cl::Buffer& materials, uint32_t material_count,
-                                 const glm::vec3& uniform_tau, const ShadowMapOptions& options,
-                                 VoxelizeStats* stats) {
+                                 const glm::vec3& uniform_tau, bool uniform_blocks,
+                                 const ShadowMapOptions& options, VoxelizeStats* stats) {
   VOXR_CHECK(material_count > 0);
   frame_ = frame;
   const glm::uvec3 d = frame.grid.dims;
@@ -56,7 +57,9 @@ void TransparentShadowMap::build(const DeviceMesh& light_mesh, const LightFrame&
   const uint64_t columns = uint64_t(frame.grid.dims.x) * frame.grid.dims.y;
   cl::Buffer& volume = volume_.ensure(cl_, columns * frame.grid.dims.z * 4, "transmittance volume");
   cl::Kernel kernel = cl_.kernel("shadow_transmittance.cl", "shadow_transmittance", channel_defines());
-  const uint32_t method = options.method == ShadowMethod::kUniform ? kShadowUniform : kShadowVoxel;
+  const uint32_t method = options.method != ShadowMethod::kUniform ? kShadowVoxel
+                          : uniform_blocks                         ? kShadowUniformOpaque
+                                                                   : kShadowUniform;
   cl::Buffer& tails = tails_.ensure(cl_, columns * 8, "transmittance volume tails");
   cl_.launch("shadow_transmittance", kernel, columns, kGroup, grid_.view_args(cl_), frame.params, materials,
              cl_uint(material_count), cl_uint(method),
@@ -66,11 +69,17 @@ void TransparentShadowMap::build(const DeviceMesh& light_mesh, const LightFrame&
 
 void TransparentShadowMap::lookup(const cl::Buffer& samples, uint32_t count, const cl::Buffer& materials,
                                   uint32_t material_count, const RenderLight& light,
-                                  const ShadowMapOptions& options, cl::Buffer& transmittance) {
+                                  const ShadowMapOptions& options, cl::Buffer& transmittance,
+                                  const cl::Buffer* opaque_depth) {
   cl::Kernel kernel = cl_.kernel("shadow_lookup.cl", "shadow_lookup");
+  // Conservative grids mark every voxel a receiver's own surface touches in a column: half the plane's
+  // depth span over a column before its crossing (shadow_frame.h sf_column_depth).
+  const float slope_bias =
+      options.method == ShadowMethod::kVoxel && options.mode == RasterMode::kConservative ? 0.5f : 0.0f;
   cl_.launch("shadow_lookup", kernel, count, kGroup, samples, cl_uint(count), materials,
-             cl_uint(material_count), light, frame_.params, volume_.buffer, tails_.buffer, options.bias,
-             options.normal_offset, transmittance);
+             cl_uint(material_count), light, frame_.params, volume_.buffer, tails_.buffer,
+             opaque_depth ? *opaque_depth : tails_.buffer, cl_uint(opaque_depth ? 1 : 0), options.bias,
+             slope_bias, options.normal_offset, transmittance);
 }
 
 uint64_t TransparentShadowMap::device_bytes() const {
@@ -88,6 +97,8 @@ UniformAbsorption uniform_absorption(const TriangleSoup& soup, const std::vector
     } else if (m.kind == MaterialKind::kDielectric) {
       u.absorption += glm::dvec3(m.absorption);
       ++u.triangles;
+    } else {
+      ++u.opaque;
     }
   }
   return u;
@@ -96,11 +107,6 @@ UniformAbsorption uniform_absorption(const TriangleSoup& soup, const std::vector
 glm::vec3 UniformAbsorption::at(float voxel_length) const {
   if (triangles == 0) return glm::vec3(0.0f);
   return glm::vec3((sheet_depth + absorption * double(voxel_length)) / double(triangles));
-}
-
-glm::vec3 uniform_optical_depth(const TriangleSoup& soup, const std::vector<Material>& materials,
-                                float voxel_length) {
-  return uniform_absorption(soup, materials).at(voxel_length);
 }
 
 }  // namespace voxr

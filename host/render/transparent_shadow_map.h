@@ -37,14 +37,22 @@ struct ShadowMapOptions {
   float normal_offset = kDefaultNormalOffset;
 };
 
-// The uniform method's absorption constant before the light grid's voxel length is known: sums over the
-// scene's transparent triangles, taken once per scene.
+// The uniform method's one absorption constant (Eisemann & Decoret I3D 2006 §5): the mean per-crossing
+// optical depth of the scene's transparent triangles (sheet: -ln transmittance; dielectric: sigma_a x one
+// voxel of the light grid), RGB, from sums taken once per scene before the light grid's voxel length is
+// known. Opaque triangles are not in the mean.
 struct UniformAbsorption {
   glm::dvec3 sheet_depth{0.0};  // sum of -ln transmittance over sheet triangles
   glm::dvec3 absorption{0.0};   // sum of sigma_a over dielectric triangles
   uint64_t triangles = 0;       // transparent triangles
+  uint64_t opaque = 0;          // opaque triangles
   // The mean per-crossing optical depth with dielectrics `voxel_length` thick.
   glm::vec3 at(float voxel_length) const;
+  // Whether the slicemap's voxels all block (Eisemann & Decoret's opaque case): opaque triangles and no
+  // transparent one. A slicemap cannot tell opaque voxels from transparent ones: where the kinds mix
+  // (mixed()), the opaque casters block through a depth map of their own (TransparentShadowMap::lookup).
+  bool blocks() const { return triangles == 0 && opaque > 0; }
+  bool mixed() const { return triangles > 0 && opaque > 0; }
 };
 UniformAbsorption uniform_absorption(const TriangleSoup& soup, const std::vector<Material>& materials);
 
@@ -59,16 +67,19 @@ class TransparentShadowMap {
 
   // Voxelizes `light_mesh` on frame.grid (directional: the scene's mesh; point: project_to_light_grid's)
   // and fills the transmittance volume. `materials` holds material_count RenderMaterials; uniform_tau is
-  // the uniform method's optical depth per occupied voxel (uniform_optical_depth). stage_ms gains the
-  // profiled kernel time of each stage.
+  // the uniform method's optical depth per occupied voxel (UniformAbsorption::at), unless uniform_blocks
+  // (UniformAbsorption::blocks: the casters are all opaque), where every occupied voxel blocks, as in
+  // Eisemann & Decoret's opaque case. stage_ms gains the profiled kernel time of each stage.
   void build(const DeviceMesh& light_mesh, const LightFrame& frame, const cl::Buffer& materials,
-             uint32_t material_count, const glm::vec3& uniform_tau, const ShadowMapOptions& options,
-             VoxelizeStats* stats = nullptr);
+             uint32_t material_count, const glm::vec3& uniform_tau, bool uniform_blocks,
+             const ShadowMapOptions& options, VoxelizeStats* stats = nullptr);
 
   // Transmittance (float4, RGB + 1) of `count` SurfaceSamples towards `light`: 1 where a sample has no
-  // triangle or shows a dielectric.
+  // triangle or shows a dielectric. `opaque_depth`: a depth map of the opaque casters on the same frame
+  // (LightSpaceMaps::opaque_depth), which then block too (uniform where opaque and transparent casters mix).
   void lookup(const cl::Buffer& samples, uint32_t count, const cl::Buffer& materials, uint32_t material_count,
-              const RenderLight& light, const ShadowMapOptions& options, cl::Buffer& transmittance);
+              const RenderLight& light, const ShadowMapOptions& options, cl::Buffer& transmittance,
+              const cl::Buffer* opaque_depth = nullptr);
 
   const DeviceVoxelGrid& grid() const { return grid_; }
   uint64_t device_bytes() const;  // the grid's channels and the transmittance volume
@@ -80,12 +91,5 @@ class TransparentShadowMap {
   GrowingBuffer volume_, tails_;  // transmittance per slab up to each column's last change; the rest
   LightFrame frame_;
 };
-
-// The uniform method's one absorption constant: the mean per-crossing optical depth of the scene's
-// transparent triangles (sheet: -ln transmittance; dielectric: sigma_a x one voxel of the light grid), RGB.
-// Opaque triangles are not in the mean, though their voxels count like any other (the method cannot tell).
-// uniform_absorption(soup, materials).at(voxel_length); the frame takes the sums once per scene.
-glm::vec3 uniform_optical_depth(const TriangleSoup& soup, const std::vector<Material>& materials,
-                                float voxel_length);
 
 }  // namespace voxr

@@ -69,6 +69,19 @@ Version version(bool full) {
 // discretisation. Under 2 voxels the runs touch or share voxels and the normals cancel.
 constexpr double kThinWallRmse = 0.08;
 
+// Transmittance RMSE of every light-grid shadow method (voxel, uniform, filter, opaque) where issue 20 sets
+// the target: a floor under a light 1-3 degrees above the horizon is no caster of itself (a plane cannot
+// shadow itself: exactly 1 at every receiver, so 0.02 is the issue's allowance, not a measurement), and a
+// point light 1e5 units up must keep a sphere's shadow (0.05). voxel-exact keeps its own requirement, 0.005.
+// With a box on the floor at 3 degrees its shadow must stay and the floor stay lit: 0.1, where no shadow at
+// all measures >= 0.25 (tests/light_grid_shadows_test.cpp) and the floor shadowing itself 0.31; what remains
+// is the shadow's two long edges, blurred over one light-grid column (0.04, conservative mode 0.08 at 96 x
+// 72).
+constexpr double kGrazingFloorRmse = 0.02;
+constexpr double kFloorBoxRmse = 0.1;
+constexpr double kFarPointLightRmse = 0.05;
+constexpr double kVoxelExactShadowRmse = 0.005;
+
 // Measures with a bound from a measurement (the key of kBounds).
 enum class Measure { kShadowRmse, kAcne, kLeak, kImageRmse, kEventMismatch, kTirFound };
 
@@ -312,6 +325,39 @@ constexpr std::string_view kGrazingScene = R"({
   "camera": {"position": [0.5, 3.0, 3.5], "look_at": [0.5, 0, 0], "fov_deg": 45, "width": 640,
              "height": 480},
   "environment": {"color": [0.3, 0.35, 0.4]}
+})";
+
+// A lone 6 x 6 floor (r03_grazing_floor.json): the grazing-floor cases light it 1 to 3 degrees above the
+// horizon.
+constexpr std::string_view kLoneFloorScene = R"({
+  "materials": [{"name": "floor", "kind": "opaque", "color": [0.7, 0.7, 0.65]}],
+  "meshes": [{"generator": "plane", "params": {"size": [6, 6]}, "material": "floor"}],
+  "light": {"type": "directional", "direction": [1, -0.05, 0.3], "intensity": [1, 1, 1]},
+  "camera": {"position": [0, 3, 3.5], "look_at": [0, 0.3, 0], "fov_deg": 45, "width": 640, "height": 480},
+  "environment": {"color": [0.2, 0.2, 0.2]}
+})";
+
+// The lone floor with a box 0.6 high on it, whose shadow at grazing light reaches across the floor.
+constexpr std::string_view kFloorBoxScene = R"({
+  "materials": [{"name": "floor", "kind": "opaque", "color": [0.7, 0.7, 0.65]},
+                {"name": "stone", "kind": "opaque", "color": [0.6, 0.6, 0.65]}],
+  "meshes": [{"generator": "plane", "params": {"size": [6, 6]}, "material": "floor"},
+             {"generator": "box", "params": {"lo": [-1.6, 0, -0.4], "hi": [-1.0, 0.6, 0.4]}, "material": "stone"}],
+  "light": {"type": "directional", "direction": [1, -0.05, 0.3], "intensity": [1, 1, 1]},
+  "camera": {"position": [0, 3, 3.5], "look_at": [0, 0.3, 0], "fov_deg": 45, "width": 640, "height": 480},
+  "environment": {"color": [0.2, 0.2, 0.2]}
+})";
+
+// A red sphere over a floor under a point light 1e5 units up (r03_far_point_light.json).
+constexpr std::string_view kFarPointLightScene = R"({
+  "materials": [{"name": "floor", "kind": "opaque", "color": [0.8, 0.8, 0.8]},
+                {"name": "red", "kind": "opaque", "color": [0.8, 0.2, 0.2]}],
+  "meshes": [{"generator": "plane", "params": {"size": [6, 6]}, "material": "floor"},
+             {"generator": "sphere", "params": {"radius": 0.5}, "material": "red",
+              "transform": {"translate": [0, 0.6, 0]}}],
+  "light": {"type": "point", "position": [0, 100000, 0], "intensity": [1e10, 1e10, 1e10]},
+  "camera": {"position": [0, 2, 4], "look_at": [0, 0.4, 0], "fov_deg": 45, "width": 640, "height": 480},
+  "environment": {"color": [0.3, 0.3, 0.3]}
 })";
 
 // The foliage scene's block of leaves with an opaque ball and box among them (data/scenes/foliage.json).
@@ -580,8 +626,9 @@ enum class SheetMeasures { kNone, kAcneAndLeaks };
 // transmittance at the same samples, non-finite pixels (image or transmittance; must be 0), and for the
 // sheet case acne (transmittance RMSE over the receivers on the lit leaf, exactly lit there) and leaks (the
 // mean transmittance, largest channel, of floor receivers the exact shadow leaves fully dark).
+// `required_rmse`: the RMSE rows' bound is this requirement (voxel-exact's own where tighter), not kBounds'.
 std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::string& name, RenderCase& s,
-                                          SheetMeasures sheet) {
+                                          SheetMeasures sheet, std::optional<double> required_rmse = {}) {
   const Version v = version(ctx.full);
   FrameRenderer renderer(ctx.cl);
   renderer.set_scene(s.soup(), s.materials());
@@ -622,9 +669,18 @@ std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::stri
     renderer.prepare(o);
     const RenderedFrame frame = renderer.render(s.light(), s.camera(), o);
     const TransmittanceError e = measure_against_reference(frame, reference).shadows->transmittance;
-    rows.push_back(measured_row(
-        name, m.label, "transmittance RMSE over visible receivers", Measure::kShadowRmse, e.rmse, ctx.full,
-        fmt::format("{} receivers, {:.1f}% off by > 0.05", e.receivers, 100.0 * e.share_over_threshold)));
+    const std::string measure = "transmittance RMSE over visible receivers";
+    std::string note =
+        fmt::format("{} receivers, {:.1f}% off by > 0.05", e.receivers, 100.0 * e.share_over_threshold);
+    if (required_rmse) {
+      const double bound = m.method == ShadowMethod::kVoxelExact
+                               ? std::min(*required_rmse, kVoxelExactShadowRmse)
+                               : *required_rmse;
+      rows.push_back(
+          row(name, m.label, measure, e.rmse, bound, false, note + "; bound: issue 20's requirement"));
+    } else {
+      rows.push_back(measured_row(name, m.label, measure, Measure::kShadowRmse, e.rmse, ctx.full, note));
+    }
     uint64_t nonfinite = 0;
     for (size_t i = 0; i < frame.image.pixels.size(); ++i)
       nonfinite += !finite(glm::vec3(frame.image.pixels[i])) || !finite(frame.transmittance[i]);
@@ -664,15 +720,25 @@ std::function<void(Scene&)> light_from_normal(double degrees) {
 }
 
 StabilityCase shadow_case(std::string name, std::string description, std::string_view json,
-                          std::function<void(Scene&)> edit = {}, SheetMeasures sheet = SheetMeasures::kNone) {
+                          std::function<void(Scene&)> edit = {}, SheetMeasures sheet = SheetMeasures::kNone,
+                          std::optional<double> required_rmse = {}) {
   StabilityCase c;
   c.family = kFamily;
   c.name = name;
   c.description = std::move(description);
-  c.run = [name, json, edit, sheet](StabilityContext& ctx) {
-    return run_shadow_case(ctx, name, *make_scene(name, json, version(ctx.full), edit), sheet);
+  c.run = [name, json, edit, sheet, required_rmse](StabilityContext& ctx) {
+    return run_shadow_case(ctx, name, *make_scene(name, json, version(ctx.full), edit), sheet, required_rmse);
   };
   return c;
+}
+
+// The light `degrees` above the receiver plane (y = 0), its horizontal part along (1, 0, 0.3): across the
+// light grid's columns, obliquely.
+std::function<void(Scene&)> light_above_horizon(double degrees) {
+  return [degrees](Scene& scene) {
+    const double r = degrees * std::numbers::pi / 180.0, h = std::cos(r) / std::sqrt(1.09);
+    scene.light.direction = glm::vec3(float(h), float(-std::sin(r)), float(0.3 * h));
+  };
 }
 
 // ---- Refraction ----
@@ -795,6 +861,30 @@ std::vector<StabilityCase> rendering_stability_cases() {
                     "angles)",
                     degrees),
         kGrazingScene, light_from_normal(degrees)));
+  for (int degrees : {1, 2, 3})
+    cases.push_back(shadow_case(
+        fmt::format("grazing-floor/{}", degrees),
+        fmt::format(
+            "A lone floor under a directional light {} degrees above the horizon (issue 20): its own "
+            "crossing lies many slabs deeper in the neighbouring light-grid columns, so a lookup at the "
+            "receiver's depth shadowed it; a plane cannot shadow itself (requirement: RMSE <= {})",
+            degrees, kGrazingFloorRmse),
+        kLoneFloorScene, light_above_horizon(degrees), SheetMeasures::kNone, kGrazingFloorRmse));
+  cases.push_back(shadow_case(
+      "grazing-floor-box/3",
+      fmt::format(
+          "The lone floor with a box on it, light 3 degrees above the horizon: the floor must stay lit "
+          "and the box's long shadow must stay (requirement: RMSE <= {})",
+          kFloorBoxRmse),
+      kFloorBoxScene, light_above_horizon(3), SheetMeasures::kNone, kFloorBoxRmse));
+  cases.push_back(shadow_case(
+      "far-point-light",
+      fmt::format(
+          "A sphere over a floor under a point light 1e5 units up (issue 20): a frustum's slabs uniform "
+          "in 1/depth fall below float resolution and lost the shadow; the light is taken as parallel "
+          "(requirement: RMSE <= {})",
+          kFarPointLightRmse),
+      kFarPointLightScene, {}, SheetMeasures::kNone, kFarPointLightRmse));
   cases.push_back(shadow_case(
       "grazing-view",
       "Camera 2.5 degrees above the receiver plane: one pixel spans a long stretch of floor, so the "

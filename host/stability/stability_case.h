@@ -9,7 +9,8 @@
 //                 each method's error), steep triangles (centre-mode holes), sub-voxel features and thin
 //                 shells, grid-aligned planes, non-watertight and duplicated geometry, meshes far from the
 //                 origin;
-//   rendering     rendering_stability.cpp: grazing light and view, receivers among casters, sheet
+//   rendering     rendering_stability.cpp: grazing light and view, floors under light 1-3 degrees above the
+//                 horizon and a point light 1e5 units away (issue 20), receivers among casters, sheet
 //                 self-shadowing (acne, leaks), total internal reflection (IOR 2.42), several boundary voxels
 //                 along one ray, rays slipping through voxel corners, multi-material boundaries, and glass
 //                 walls 0.5 to 8 voxels of the fitted refraction grid thick (thin-wall/*);

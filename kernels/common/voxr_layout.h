@@ -270,7 +270,7 @@ typedef struct LightFitParams {
   uint projective;                        /* point light */
   float eps;                              /* casts_on's tolerance */
   float depth_floor;                      /* point light: the near cut of casters */
-  uint pad;
+  uint point;                             /* a point light (projective, or far enough to be parallel) */
 } LightFitParams;
 
 /* Light mesh pieces: projection into a point light's grid, near clip, oversize splitting. */

@@ -79,7 +79,7 @@ inline int lf_clip_near(const float3* tri, float z_min, float3* out) {
 /* LightFitParams (voxr_layout.h) as vectors. */
 typedef struct LightFit {
   float4 receivers_lo, receivers_hi, row0, row1, row2, light;
-  uint projective;
+  uint projective, point;
   float eps, depth_floor;
 } LightFit;
 
@@ -92,6 +92,7 @@ inline LightFit lf_fit(const LightFitParams a) {
   f.row2 = vload4(0, a.row2);
   f.light = vload4(0, a.light);
   f.projective = a.projective;
+  f.point = a.point;
   f.eps = a.eps;
   f.depth_floor = a.depth_floor;
   return f;
@@ -105,7 +106,7 @@ inline int lf_caster(const LightFit* f, float3 a, float3 b, float3 c, float4* bo
   const float len = sqrt(lf_dot(n, n));
   if (!(len > 0.0f)) return 0;
   const float3 u = n / len;
-  const float light_side = f->projective ? lf_dot(u, f->light.xyz - a) : -lf_dot(u, f->light.xyz);
+  const float light_side = f->point ? lf_dot(u, f->light.xyz - a) : -lf_dot(u, f->light.xyz);
   bool casts = false;
   for (int i = 0; i < 8 && !casts; ++i) {
     const float3 k = (float3)((i & 1) ? f->receivers_hi.x : f->receivers_lo.x,

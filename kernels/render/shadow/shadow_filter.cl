@@ -4,7 +4,8 @@
  *     sheet -ln(t) per crossing; dielectric -sigma_a d on faces towards the light and +sigma_a d on faces
  * away (d: distance from the light along the texel's ray), which sums to sigma_a x thickness.
  *   shadow_map_lookup: receivers against the depth map (visibility words, opaque casters or all casters)
- *     with 2x2 percentage-closer filtering; the filter method multiplies by exp(-optical depth). */
+ *     with 2x2 percentage-closer filtering, each texel compared at the receiver plane's depth in its column
+ *     (sf_column_depth); the filter method multiplies by exp(-optical depth). */
 #include "raster_coverage.h"
 #include "shadow_frame.h"
 
@@ -71,9 +72,9 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_m
   const SurfaceSample s = samples[id];
   float3 result = (float3)(1.0f);
   float3 g;
-  if (sf_receiver(&frame, &light, &s, materials, material_count, normal_offset, &g)) {
+  float2 slope;
+  if (sf_receiver(&frame, &light, &s, materials, material_count, normal_offset, &g, &slope)) {
     const int w = (int)frame.dims[0], h = (int)frame.dims[1];
-    const float receiver = (g.z - bias) / (float)frame.dims[2];
     /* Texel centres: column i at x = i + 0.5; image row y = dims.y - 1 - j. */
     const float x = g.x - 0.5f, y = g.y - 0.5f;
     const float fx = floor(x), fy = floor(y);
@@ -83,10 +84,8 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_m
       for (int di = 0; di < 2; ++di) {
         const int i = clamp((int)fx + di, 0, w - 1), j = clamp((int)fy + dj, 0, h - 1);
         const ulong texel = (ulong)(h - 1 - j) * (ulong)w + (ulong)i;
-        const ulong word = depth[texel];
-        const float occluder =
-            (uint)(word & 0xffffffffu) == VOXR_NO_TRIANGLE ? 2.0f : as_float((uint)(word >> 32));
-        float3 t = receiver <= occluder ? (float3)(1.0f) : (float3)(0.0f);
+        const float receiver = sf_column_depth(&frame, g, slope, i, j, bias, 0.0f) / (float)frame.dims[2];
+        float3 t = (float3)(sf_depth_lit(depth, texel, receiver));
         if (filter) {
           const int3 q = vload3(texel, tau);
           t *= exp(-max(convert_float3(q), 0.0f) / FILTER_ONE);

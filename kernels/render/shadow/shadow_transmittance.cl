@@ -10,12 +10,14 @@
  *   opaque      blocks: everything beyond is 0;
  *   dielectric  each write toggles inside/outside; sigma_a x the column's length inside (half a slab where
  *               it toggles).
- * SHADOW_UNIFORM (Eisemann & Decoret 2006 §5): every occupied voxel adds one constant optical depth. */
+ * SHADOW_UNIFORM (Eisemann & Decoret 2006 §5): every occupied voxel adds one constant optical depth;
+ * SHADOW_UNIFORM_OPAQUE (their opaque case, for casters that are all opaque): every occupied voxel blocks. */
 #include "grid_view.h"
 #include "shadow_frame.h"
 
 #define SHADOW_VOXEL 0
 #define SHADOW_UNIFORM 1
+#define SHADOW_UNIFORM_OPAQUE 2
 
 #ifndef SHADOW_GROUP
 #define SHADOW_GROUP 64
@@ -46,7 +48,7 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_t
     uint count = 0;
     int kind = -1;
     RenderMaterial mat;
-    if (occupied && method != SHADOW_UNIFORM) {
+    if (occupied && method == SHADOW_VOXEL) {
       const uint r = gv_rank(&g, v);
       count = gv_count(&g, r);
       mat = materials[min(gv_material(&g, r), material_count - 1u)];
@@ -71,7 +73,7 @@ __kernel __attribute__((reqd_work_group_size(SHADOW_GROUP, 1, 1))) void shadow_t
       changed = 1;
       if (method == SHADOW_UNIFORM) {
         tau += (float3)(uniform_r, uniform_g, uniform_b);
-      } else if (kind == VOXR_MATERIAL_OPAQUE) {
+      } else if (method == SHADOW_UNIFORM_OPAQUE || kind == VOXR_MATERIAL_OPAQUE) {
         /* Blocks everything from its slab on: the column's tail is 0 from slab k. */
         for (; written < k; ++written) out[written] = packed;
         packed = 0u;
