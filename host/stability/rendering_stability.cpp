@@ -718,7 +718,7 @@ void require_bounds(const std::string& name, const std::vector<std::string>& met
     for (Measure m : measures)
       if (!find_bound(name, method, m))
         fail("rendering stability case {}: method {} has no bound for measure {} (kBounds)", name, method,
-             int(m));
+             std::array{"shadow RMSE", "acne", "leak", "image RMSE", "event mismatch", "TIR found"}[int(m)]);
 }
 
 StabilityCase shadow_case(std::string name, std::string description, std::string_view json,
