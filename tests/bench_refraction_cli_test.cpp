@@ -49,7 +49,9 @@ TEST(BenchRefractionCli, TinyRunWritesRowsWithFiniteErrors) {
   EXPECT_EQ(rows[1].at("normals"), "smooth");
   EXPECT_GT(std::stoull(rows[1].at("grid_bytes")), 0u);
   EXPECT_GT(std::stod(rows[1].at("rmse")), 0.0);
-  EXPECT_LT(std::stod(rows[1].at("rmse")), 0.5);
+  // Every method within image RMSE 0.1 of the matched reference on the sphere at 64 x 48 (the bound
+  // RenderCli.EveryRefractionMethodRendersTheGlassSphere states: half what a flat image is off by).
+  for (size_t i = 1; i < rows.size(); ++i) EXPECT_LE(std::stod(rows[i].at("rmse")), 0.1) << methods[i];
   EXPECT_GT(std::stod(rows[1].at("refraction_ms")), 0.0);
   EXPECT_EQ(rows[0].at("psnr"), "inf");
   // distance-maps' cost split: the layers and the tracing; the other methods render no layers.

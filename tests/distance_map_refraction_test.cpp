@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,52 @@ TEST(DistanceMapRefraction, ReferencePointIsTheDielectricsCentre) {
   EXPECT_NEAR(glm::length(o.reference), 0.0f, 1e-5f);
   EXPECT_NEAR(o.radius, 1.01f * std::sqrt(3.0f), 1e-4f);
   EXPECT_NEAR(o.scene_radius, 1.01f * std::sqrt(4.0f + 4.0f + 9.0f), 1e-4f);
+}
+
+// Issue 20, kind 6: the camera-inside check. A glass box (material 1) with a glass box of another glass
+// (material 2) inside it and an opaque box (material 0) beside them: a point is inside the innermost
+// dielectric that holds it (the first odd material), in none outside or in the opaque box.
+TEST(DistanceMapRefraction, DielectricAroundAPointByParity) {
+  std::vector<Material> mats(3);
+  mats[0].name = "stone";
+  mats[1].name = "glass";
+  mats[1].kind = MaterialKind::kDielectric;
+  mats[2].name = "flint";
+  mats[2].kind = MaterialKind::kDielectric;
+  TriangleSoup soup;
+  soup.append(make_box({-2, -2, -2}, {2, 2, 2}), glm::mat4(1.0f), 1);
+  soup.append(make_box({-0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}), glm::mat4(1.0f), 2);
+  soup.append(make_box({3, -1, -1}, {5, 1, 1}), glm::mat4(1.0f), 0);
+  EXPECT_EQ(dielectric_around(soup, mats, {1.5f, 0.0f, 0.0f}), std::optional<uint32_t>(1u));
+  EXPECT_EQ(dielectric_around(soup, mats, {-1.0f, 1.0f, 0.25f}), std::optional<uint32_t>(1u));
+  // Inside the inner box: inside both; the lowest odd material id is reported (glass, then flint).
+  EXPECT_EQ(dielectric_around(soup, mats, {0.1f, 0.2f, 0.0f}), std::optional<uint32_t>(1u));
+  EXPECT_EQ(dielectric_around(soup, mats, {0.0f, 0.0f, 3.0f}), std::nullopt);
+  EXPECT_EQ(dielectric_around(soup, mats, {4.0f, 0.0f, 0.0f}), std::nullopt) << "inside the opaque box";
+  EXPECT_EQ(dielectric_around(soup, mats, {-9.0f, -9.0f, -9.0f}), std::nullopt);
+}
+
+// Rendering from inside the glass is refused with the material's name (it rendered a dark picture, every
+// path lost); from outside the same scene renders.
+TEST(DistanceMapRefraction, CameraInsideGlassIsRefused) {
+  const TriangleSoup ball = scene(false);
+  const std::vector<Material> mats = materials();
+  FrameRenderer renderer(test::runtime());
+  renderer.set_scene(ball, mats);  // kept by reference
+  renderer.set_environment(EnvironmentMap::checker());
+  const RenderOptions o = options(2, 32);
+  renderer.prepare(o);
+  CameraFrame inside = camera();
+  inside.eye = glm::vec3(0.1f, 0.2f, 0.3f);  // within the unit ball
+  try {
+    renderer.render(light(), inside, o);
+    ADD_FAILURE() << "a camera inside the ball was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the camera is inside the dielectric '" + mats[kGlass].name + "'"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(renderer.render(light(), camera(), o));
 }
 
 TEST(DistanceMapRefraction, PeelingMatchesTheSortedReferenceLayers) {

@@ -447,11 +447,19 @@ TEST(GridView, MarchStepsBetweenFaceNeighboursFromTheEntryPoint) {
   const std::vector<Ray> rays = random_rays(11, 2000, g.dims);
   const std::vector<Walk> walks = march(g.device, rays);
   double worst_t = 0.0;
+  size_t walked = 0, missed = 0;  // rays that meet the grid (the reference's clip), and the others
   for (size_t r = 0; r < rays.size(); ++r) {
     const Walk& w = walks[r];
     const RefRay ref(rays[r], g.device.spec.dims);
     double t0, t1;
-    if (!ref.clip(t0, t1) || w.voxels.empty()) continue;
+    if (!ref.clip(t0, t1)) {
+      ++missed;
+      EXPECT_TRUE(w.voxels.empty()) << describe(rays[r]) << " misses the grid but visits " << w.voxels.size();
+      continue;
+    }
+    // A ray that meets the grid must be walked: an empty walk is a failure, never a skip.
+    ASSERT_FALSE(w.voxels.empty()) << describe(rays[r]) << " meets the grid at t = " << t0;
+    ++walked;
     ASSERT_LE(RefRay::outside(ref.at(t0), glm::ivec3(w.voxels[0])), kEntry) << describe(rays[r]);
     for (size_t s = 0; s < w.voxels.size(); ++s) {
       const glm::ivec3 v(w.voxels[s]);
@@ -469,7 +477,15 @@ TEST(GridView, MarchStepsBetweenFaceNeighboursFromTheEntryPoint) {
     }
   }
   EXPECT_LT(worst_t, 1e-3);
-  std::printf("GridView march: entry points lie at most %.3g outside their voxels\n", worst_t);
+  // random_rays: 3 of 4 rays start outside and aim at points up to 3 voxels beyond the grid, every 4th
+  // starts inside; most meet the grid and some miss (a test of only misses, or only hits, would prove less).
+  EXPECT_EQ(walked + missed, rays.size());
+  EXPECT_GT(walked, rays.size() * 3 / 4);
+  EXPECT_GT(missed, 0u);
+  std::printf(
+      "GridView march: %zu of %zu rays walked (%zu miss); entry points lie at most %.3g outside "
+      "their voxels\n",
+      walked, rays.size(), missed, worst_t);
 }
 
 TEST(GridView, RaysThatMissTheGridVisitNothing) {

@@ -460,6 +460,28 @@ TEST(RefractionMetrics, HandMadePaths) {
   EXPECT_THROW(refraction_error(image, a, reference, std::span(b).first(3)), Error);
 }
 
+// Issue 20, kind 6: a path cut short (VOXR_PATH_LOST, in the method's or the reference's) has no event
+// sequence to compare: it is counted as lost and left out of the share, and a share over no compared pixel
+// is NaN, not 0 %.
+TEST(RefractionMetrics, LostPathsAreCountedNotCompared) {
+  const uint32_t env = VOXR_PATH_ENV, lost = VOXR_PATH_LOST;
+  const ImageRgba image(2, 2, glm::vec4(0.5f));
+  // 0: the method lost the ray after one interface, the reference met one: not compared.
+  // 1: the reference lost it: not compared.  2: 1 against 2 interfaces: a mismatch.  3: equal.
+  const std::vector<RefractionPath> a{path(1 | lost), path(2 | env), path(1 | env), path(2 | env)};
+  const std::vector<RefractionPath> b{path(1 | env), path(3 | lost), path(2 | env), path(2 | env)};
+  RefractionError e = refraction_error(image, a, image, b);
+  EXPECT_EQ(e.refracted_pixels, 4u);
+  EXPECT_EQ(e.lost_pixels, 2u);
+  EXPECT_DOUBLE_EQ(e.event_mismatch_share, 0.5);
+  // Every refracted pixel lost by the method (the camera-in-glass picture): nothing compared.
+  const std::vector<RefractionPath> all_lost(4, path(1 | lost)), reference(4, path(1 | env));
+  e = refraction_error(image, all_lost, image, reference);
+  EXPECT_EQ(e.refracted_pixels, 4u);
+  EXPECT_EQ(e.lost_pixels, 4u);
+  EXPECT_TRUE(std::isnan(e.event_mismatch_share)) << e.event_mismatch_share;
+}
+
 // d_N from every vertex of a glass sphere is its diameter (the ray along -normal passes the centre to the
 // antipodal vertex); an opaque box's vertices and an open glass square's (whose ray finds nothing) get -1
 // (unknown).

@@ -22,6 +22,7 @@ StabilityRow make_row(std::string method, double value, double bound, bool at_le
   r.bound = bound;
   r.at_least = at_least;
   r.note = "a | b";
+  r.reason = "rule: none | by hand";
   return r;
 }
 
@@ -33,9 +34,13 @@ TEST(StabilityMarkdown, TableRowsPassAndFail) {
   result.rows[1].picture = "grid.png";
   const std::string md =
       stability_markdown({result}, {"voxr bench stability", "PoCL", "2026-11-30T00:00:00Z", "1 2 3"}, "img");
-  EXPECT_NE(md.find("| hand-made | slice-center | tunnels | 3 | 5 | pass | a \\| b |\n"), std::string::npos)
+  EXPECT_NE(
+      md.find("| hand-made | slice-center | tunnels | 3 | ≤ 5 | pass | a \\| b | rule: none \\| by hand |\n"),
+      std::string::npos)
       << md;
-  EXPECT_NE(md.find("| hand-made | grid | tunnels | 7 | 5 | **FAIL** | a \\| b |\n"), std::string::npos)
+  EXPECT_NE(
+      md.find("| hand-made | grid | tunnels | 7 | ≤ 5 | **FAIL** | a \\| b | rule: none \\| by hand |\n"),
+      std::string::npos)
       << md;
   EXPECT_NE(md.find("## voxelization"), std::string::npos);
   EXPECT_NE(md.find("rows: 2, failing: 1"), std::string::npos);
@@ -44,23 +49,42 @@ TEST(StabilityMarkdown, TableRowsPassAndFail) {
   EXPECT_NE(md.find("- **hand-made**"), std::string::npos);
 }
 
-TEST(StabilityMarkdown, AtLeastAndDocumentedBounds) {
+// At-least bounds; documented failures held in both directions; a bound that cannot fail (infinite) or
+// that states no reason never passes.
+TEST(StabilityMarkdown, AtLeastDocumentedAndReasonlessBounds) {
   const double inf = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(make_row("m", 1, 1, true).pass());
   EXPECT_FALSE(make_row("m", 0.5, 1, true).pass());
-  EXPECT_TRUE(make_row("m", 1e9, inf).pass());
-  EXPECT_EQ(format_stability_number(inf), "—");
+  EXPECT_FALSE(make_row("m", 1e9, inf).pass()) << "an infinite bound passes by construction";
+  EXPECT_FALSE(make_row("m", 0, inf, true).pass());
+  StabilityRow no_reason = make_row("m", 3, 5);
+  no_reason.reason.clear();
+  EXPECT_FALSE(no_reason.pass()) << "a bound must say where it comes from";
+  const StabilityRow known = documented(make_row("m", 0.95, 0), 0.9, 1.0, "walls under a voxel");
+  EXPECT_TRUE(known.pass());
+  EXPECT_EQ(known.reason, "documented failure: walls under a voxel");
+  EXPECT_FALSE(documented(make_row("m", 0.85, 0), 0.9, 1.0, "x").pass()) << "the failure got smaller";
+  EXPECT_FALSE(documented(make_row("m", 0.5, 0), 0.1, 0.4, "x").pass()) << "the failure grew";
+  EXPECT_EQ(bound_text(known), "0.9 to 1");
+  EXPECT_EQ(format_stability_number(inf), "inf");
   EXPECT_EQ(format_stability_number(12), "12");
   EXPECT_EQ(format_stability_number(0.123456), "0.1235");
   const StabilityCase c{"inputs", "hand-made", "At least.", nullptr};
   StabilityCaseResult result;
   result.source = &c;
-  result.rows = {make_row("m", 0.5, 1, true)};
+  result.rows = {make_row("m", 0.5, 1, true), documented(make_row("d", 0.5, 0), 0.1, 0.4, "grows"),
+                 no_reason};
   const std::string md = stability_markdown({result}, {}, ".");
   EXPECT_NE(md.find("| 0.5 | ≥ 1 | **FAIL** |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 0.5 | 0.1 to 0.4 | **FAIL** | a \\| b | documented failure: grows |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| 3 | ≤ 5 | **FAIL** | a \\| b | **none stated** |"), std::string::npos) << md;
   const std::vector<std::string> failures = stability_failures({result});
-  ASSERT_EQ(failures.size(), 1u);
-  EXPECT_EQ(failures[0], "voxelization hand-made m: tunnels 0.5 < 1 (a | b)");
+  ASSERT_EQ(failures.size(), 3u);
+  EXPECT_EQ(failures[0],
+            "voxelization hand-made m: tunnels 0.5 outside ≥ 1 (a | b; bound: rule: none | by hand)");
+  EXPECT_EQ(failures[2], "voxelization hand-made m: tunnels 3 outside ≤ 5 (a | b; bound: no reason stated)");
 }
 
 TEST(StabilityRunner, ThrowingCaseBecomesAFailingRow) {
@@ -75,6 +99,7 @@ TEST(StabilityRunner, ThrowingCaseBecomesAFailingRow) {
   ASSERT_EQ(results[0].rows.size(), 1u);
   EXPECT_FALSE(results[0].rows[0].pass());
   EXPECT_EQ(results[0].rows[0].note, "the case threw: boom");
+  EXPECT_FALSE(results[0].rows[0].reason.empty());
   EXPECT_EQ(progress.size(), 1u);
 }
 

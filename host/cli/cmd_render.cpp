@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -350,7 +351,11 @@ int run_render(const RenderArgs& args) {
                                {"angle_p95_deg", finite_or_inf(e.angle_p95_deg)},
                                {"angle_pixels", e.angle_pixels},
                                {"refracted_pixels", e.refracted_pixels},
-                               {"event_mismatch_share", e.event_mismatch_share},
+                               {"lost_pixels", e.lost_pixels},
+                               // null when no pixel could be compared (every one lost)
+                               {"event_mismatch_share", std::isnan(e.event_mismatch_share)
+                                                            ? nlohmann::json(nullptr)
+                                                            : nlohmann::json(e.event_mismatch_share)},
                                {"nonfinite_pixels", e.nonfinite_pixels},
                                {"error_image", error_path.string()},
                                {"reference_ms", refraction_ms + compare_ms}};
@@ -458,13 +463,20 @@ int run_render(const RenderArgs& args) {
     };
     if (compare.contains("refraction")) {
       const auto& c = compare["refraction"];
+      const uint64_t refracted = c["refracted_pixels"].get<uint64_t>(),
+                     lost = c["lost_pixels"].get<uint64_t>();
+      const std::string events =
+          c["event_mismatch_share"].is_null()
+              ? fmt::format("event sequences not compared: all {} refracted pixels lost", refracted)
+              : fmt::format(
+                    "event sequence differs on {:.2f}% of {} compared pixels ({} refracted, {} lost: "
+                    "not compared)",
+                    100.0 * c["event_mismatch_share"].get<double>(), refracted - lost, refracted, lost);
       fmt::print(
           "vs matched image RMSE {:.4f}, PSNR {} dB (exact shadows); exit direction error mean {} deg, 95th "
-          "{} "
-          "deg ({} pixels); event sequence differs on {:.2f}% of {} refracted pixels; {} non-finite pixels\n",
+          "{} deg ({} pixels); {}; {} non-finite pixels\n",
           c["rmse"].get<double>(), number_text(c["psnr"]), number_text(c["angle_mean_deg"]),
-          number_text(c["angle_p95_deg"]), c["angle_pixels"].get<uint64_t>(),
-          100.0 * c["event_mismatch_share"].get<double>(), c["refracted_pixels"].get<uint64_t>(),
+          number_text(c["angle_p95_deg"]), c["angle_pixels"].get<uint64_t>(), events,
           c["nonfinite_pixels"].get<uint64_t>());
       fmt::print("wrote      {}\n", c["error_image"].get<std::string>());
     }

@@ -53,11 +53,17 @@ RefractionError refraction_error(const ImageRgba& image, std::span<const Refract
     const uint32_t na = interfaces(a), nb = interfaces(b);
     if (na == 0 && nb == 0) continue;
     ++e.refracted_pixels;
+    if ((a.events | b.events) & VOXR_PATH_LOST) {
+      ++e.lost_pixels;
+      continue;
+    }
     if (na != nb || (a.events & VOXR_PATH_TIR) != (b.events & VOXR_PATH_TIR)) ++mismatches;
     if (na > 0 && nb > 0 && (a.events & VOXR_PATH_ENV) && (b.events & VOXR_PATH_ENV))
       angles.push_back(angle_deg(a.exit_direction, b.exit_direction));
   }
-  e.event_mismatch_share = e.refracted_pixels > 0 ? double(mismatches) / double(e.refracted_pixels) : 0.0;
+  const uint64_t compared = e.refracted_pixels - e.lost_pixels;
+  e.event_mismatch_share =
+      compared > 0 ? double(mismatches) / double(compared) : std::numeric_limits<double>::quiet_NaN();
 
   e.angle_pixels = angles.size();
   if (!angles.empty()) {

@@ -20,9 +20,13 @@ struct RefractionError {
   // is not finite.
   double angle_mean_deg = 0.0, angle_p95_deg = 0.0;
   uint64_t angle_pixels = 0;
-  // Pixels where either path met an interface, and the share of them whose event sequence differs: the
-  // number of interfaces (events & VOXR_PATH_EVENTS_MASK) or whether there was a total internal reflection.
+  // Pixels where either path met an interface; of them, those where either path is VOXR_PATH_LOST (cut
+  // short: the method lost the ray, or a limit ended it), whose event sequences cannot be compared; and the
+  // share of the others (refracted - lost) whose event sequence differs: the number of interfaces
+  // (events & VOXR_PATH_EVENTS_MASK) or whether there was a total internal reflection. The share is NaN when
+  // no pixel could be compared (never 0 % over nothing).
   uint64_t refracted_pixels = 0;
+  uint64_t lost_pixels = 0;
   double event_mismatch_share = 0.0;
   uint64_t nonfinite_pixels = 0;  // pixels of `image` with a NaN or infinite channel (must be 0)
 };

@@ -27,7 +27,56 @@ float farthest_corner(const Bounds& b, const glm::vec3& from) {
   return r;
 }
 
+// Möller-Trumbore in double: whether the ray o + t d (t > 0) crosses the triangle (a, b, c).
+bool crosses(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& a, const glm::dvec3& b,
+             const glm::dvec3& c) {
+  const glm::dvec3 e1 = b - a, e2 = c - a, p = glm::cross(d, e2);
+  const double det = glm::dot(e1, p);
+  if (det == 0.0) return false;
+  const glm::dvec3 s = o - a;
+  const double u = glm::dot(s, p) / det;
+  if (u < 0.0 || u > 1.0) return false;
+  const glm::dvec3 q = glm::cross(s, e1);
+  const double v = glm::dot(d, q) / det;
+  if (v < 0.0 || u + v > 1.0) return false;
+  return glm::dot(e2, q) / det > 0.0;
+}
+
+// The first material crossed an odd number of times by a ray from `point`; corners hold 3 per triangle.
+std::optional<uint32_t> odd_crossings(const std::vector<glm::vec3>& corners,
+                                      const std::vector<uint32_t>& material_of, uint32_t material_count,
+                                      const glm::vec3& point) {
+  // Off every axis and every diagonal, so that it meets no edge of an axis-aligned mesh head on.
+  const glm::dvec3 dir = glm::normalize(glm::dvec3(0.5384, 0.7213, 0.4357));
+  std::vector<uint32_t> count(material_count, 0);
+  for (size_t t = 0; t < material_of.size(); ++t)
+    count[material_of[t]] += crosses(glm::dvec3(point), dir, glm::dvec3(corners[3 * t]),
+                                     glm::dvec3(corners[3 * t + 1]), glm::dvec3(corners[3 * t + 2]));
+  for (uint32_t m = 0; m < material_count; ++m)
+    if (count[m] % 2) return m;
+  return std::nullopt;
+}
+
+void collect_dielectrics(const TriangleSoup& soup, const std::vector<Material>& materials,
+                         std::vector<glm::vec3>& corners, std::vector<uint32_t>& material_of) {
+  corners.clear();
+  material_of.clear();
+  for (const glm::uvec4& t : soup.triangles) {
+    if (t.w >= materials.size() || materials[t.w].kind != MaterialKind::kDielectric) continue;
+    for (int v = 0; v < 3; ++v) corners.push_back(glm::vec3(soup.positions[t[v]]));
+    material_of.push_back(t.w);
+  }
+}
+
 }  // namespace
+
+std::optional<uint32_t> dielectric_around(const TriangleSoup& soup, const std::vector<Material>& materials,
+                                          const glm::vec3& point) {
+  std::vector<glm::vec3> corners;
+  std::vector<uint32_t> material_of;
+  collect_dielectrics(soup, materials, corners, material_of);
+  return odd_crossings(corners, material_of, uint32_t(materials.size()), point);
+}
 
 DistanceMapOrigin distance_map_origin(const TriangleSoup& soup, const std::vector<Material>& materials) {
   Bounds dielectric;
@@ -73,6 +122,9 @@ std::vector<ProgramSpec> DistanceMapRefraction::programs() const {
 
 void DistanceMapRefraction::set_scene(const TriangleSoup& soup, const std::vector<Material>& materials) {
   origin_ = distance_map_origin(soup, materials);
+  collect_dielectrics(soup, materials, dielectric_corners_, dielectric_materials_);
+  material_names_.clear();
+  for (const Material& m : materials) material_names_.push_back(m.name);
 }
 
 void DistanceMapRefraction::resolve_into(const DeviceMesh& mesh, const cl::Buffer& vertex_normals,
@@ -97,6 +149,13 @@ void DistanceMapRefraction::trace(const DeviceMesh& mesh, const cl::Buffer& vert
   if (options.layer_res < kDistanceMapMinRes || options.layer_res > kDistanceMapMaxRes)
     fail("distance-maps: layer resolution {}; {} to {} texels are allowed", options.layer_res,
          kDistanceMapMinRes, kDistanceMapMaxRes);
+  if (const std::optional<uint32_t> around = odd_crossings(dielectric_corners_, dielectric_materials_,
+                                                           uint32_t(material_names_.size()), camera.eye))
+    fail(
+        "--refraction distance-maps: the camera is inside the dielectric '{}'; the method traces paths "
+        "from outside the glass (its maps hold no surface beyond it): use voxel-multi, voxel-exact or "
+        "reference",
+        material_names_[*around]);
   const uint32_t res = options.layer_res;
   const uint64_t face_texels = uint64_t(res) * res;
   cl::Buffer& layers =

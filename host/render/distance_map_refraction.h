@@ -20,12 +20,16 @@
 // construction, not hidden: a surface hidden from the reference point behind `layers` others, or an opaque
 // surface hidden behind another from it, is not found (a path inside glass that finds no surface is
 // VOXR_PATH_LOST); surfaces closer than a search step apart along a ray may be skipped; max_events ends a
-// path VOXR_PATH_LOST.
+// path VOXR_PATH_LOST. A camera inside a dielectric is refused (trace throws): every path starts by entering
+// the first surface seen, and the maps hold no surface beyond the refractor for a path that leaves it, so the
+// picture would be dark (issue 20, kind 6).
 #pragma once
 
 #include <glm/glm.hpp>
 
 #include <array>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "cl/cl_runtime.h"
@@ -60,6 +64,12 @@ struct DistanceMapOrigin {
 };
 DistanceMapOrigin distance_map_origin(const TriangleSoup& soup, const std::vector<Material>& materials);
 
+// The dielectric material whose closed surface holds `point` (anchor-relative): the first material whose
+// triangles a ray from `point` (a fixed direction off every axis) crosses an odd number of times; nullopt
+// when there is none. Exact for closed meshes; an open sheet of dielectric counts by the side the ray leaves.
+std::optional<uint32_t> dielectric_around(const TriangleSoup& soup, const std::vector<Material>& materials,
+                                          const glm::vec3& point);
+
 // The camera of cube face `face` (0..5: +x, -x, +y, -y, +z, -z) at `eye`: 90 degrees, `res` x `res` texels,
 // view depths near..far.
 CameraFrame cube_face_frame(const glm::vec3& eye, uint32_t face, uint32_t res, float near_plane,
@@ -80,7 +90,8 @@ class DistanceMapRefraction {
   // `primary_samples`): its end SurfaceSample and RefractionPath, written at the pixel's index of
   // `end_samples` and `paths` (nothing else is written).
   // `mesh`, `vertex_normals`, `materials` (material_count RenderMaterial) as FrameRenderer has them. Throws
-  // voxr::Error for layers or layer_res out of range.
+  // voxr::Error for layers or layer_res out of range, and when the camera's eye is inside a dielectric of the
+  // scene (dielectric_around): the method traces from outside the refractor.
   void trace(const DeviceMesh& mesh, const cl::Buffer& vertex_normals, const CameraFrame& camera,
              const cl::Buffer& materials, uint32_t material_count, const RefractionOptions& options,
              const cl::Buffer& primary_samples, const DielectricPixels& dielectric, cl::Buffer& end_samples,
@@ -96,6 +107,11 @@ class DistanceMapRefraction {
   ClRuntime& cl_;
   VisibilityRasterizer rasterizer_;
   DistanceMapOrigin origin_;
+  // The scene's dielectric triangles (3 anchor-relative corners each, and its material id) and the
+  // materials' names, for the camera-inside check.
+  std::vector<glm::vec3> dielectric_corners_;
+  std::vector<uint32_t> dielectric_materials_;
+  std::vector<std::string> material_names_;
   RasterBins bins_;
   GrowingBuffer peel_[2], face_samples_, layers_, environment_, distances_;
 

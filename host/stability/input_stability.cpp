@@ -143,6 +143,7 @@ std::vector<StabilityRow> run_input(StabilityContext& ctx, const InputCase& c) {
     r.bound = 1.0;
     r.at_least = true;
     r.note = o.ok ? o.text : "error: " + o.text;
+    r.reason = "rule: every stage gives a result or a clear error, never a crash or NaN pixels";
     // The page is generated: the temporary folder (a process id) stays out of it.
     for (size_t at; (at = r.note.find(dir.string() + "/")) != std::string::npos;)
       r.note.erase(at, dir.string().size() + 1);
@@ -209,6 +210,7 @@ std::vector<StabilityRow> run_input(StabilityContext& ctx, const InputCase& c) {
   r.bound = 1.0;
   r.at_least = true;
   r.note = rejected ? "rejected at " + rows.back().method : "accepted by every stage";
+  r.reason = "rule: the outcome documented for this input (docs/mesh-files.md)";
   if (c.expect == Expect::kAccepted && !rejected && degenerate != c.degenerate) {
     r.value = 0.0;
     r.note =

@@ -5,14 +5,24 @@
 // metrics/refraction_metrics.h, each method's frame shaded with the exact shadows so the error is
 // refraction's alone).
 //
-// Bounds (kBounds) are 1.5x the value measured on PoCL (2-core CPU) when the bound was set, rounded up to
-// two significant digits, never below a floor that absorbs rounding between devices (0.005 for an RMSE or
-// a mean transmittance, 0.01 for a share of pixels); a share of pixels s gets min(1.5 s, (1 + s) / 2), so
-// that its bound stays below 1 where it can; measures that must be at least something are bounded by the
-// measured value / 1.5, rounded down. Hard bounds where physics says: no non-finite pixel, total internal
-// reflection present in the reference of the TIR scene. The refraction cases before the thin-wall family
+// Bounds state requirements, each row with its reason (stability_case.h):
+//   physics       no non-finite pixel; total internal reflection present in the reference of the TIR scene;
+//   targets       voxel-exact: issue 19's (image RMSE <= 0.01, event mismatch <= 1 %, transmittance RMSE
+//                 <= 0.005); voxel-multi on walls of 4 voxels or more: kThinWallRmse (issue 19);
+//   purpose       every other method's transmittance RMSE must be below that of no shadow at all
+//                 (transmittance 1 at the same receivers), its image RMSE below that of the glass drawn
+//                 unrefracted (--refraction none, exact shadows): a method that does worse than leaving the
+//                 effect out has no purpose; both baselines are measured on the case itself;
+//   rules         the approximate methods' event mismatch at most 0.5 (they follow the interfaces they find),
+//                 TIR found at least 0.5 (every method mirrors on TIR), acne at most 0.05 (the suite's 'off'
+//                 threshold), leaks under a closed slab at most 0.1;
+//   documented    known failures, two-sided (kBounds' low to bound, the measured values / 1.5 to x 1.5 within
+//                 [0, 1]): walls under 2 voxels for the voxel methods, two interfaces for voxel-two and
+//                 image-space, shells under a voxel, each case's own failure mode where a method shows it.
+// A method or measure without a bound it needs is an error when the cases are built
+// (rendering_stability_cases), never a silent default. The refraction cases before the thin-wall family
 // run on the whole scene's grid (RefractionGrid::kScene), on which their bounds were measured; the thin-wall
-// family runs on the fitted grid, with a requirement where physics allows one (kThinWallRmse).
+// family runs on the fitted grid.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -82,214 +92,237 @@ constexpr double kFloorBoxRmse = 0.1;
 constexpr double kFarPointLightRmse = 0.05;
 constexpr double kVoxelExactShadowRmse = 0.005;
 
-// Measures with a bound from a measurement (the key of kBounds).
+// Measures with a bound in kBounds (the key). kShadowRmse and kImageRmse rows absent from it are bounded by
+// their purpose's baseline, measured on the case.
 enum class Measure { kShadowRmse, kAcne, kLeak, kImageRmse, kEventMismatch, kTirFound };
+
+// The reasons of kBounds' rows (StabilityRow::reason).
+constexpr std::string_view kExactTarget =
+    "issue 19 target: voxel-exact image RMSE <= 0.01 (PSNR >= 40 dB), event mismatch <= 1 %, the reference's "
+    "TIR";
+constexpr std::string_view kExactShadowTarget =
+    "issue 19 target: voxel-exact transmittance RMSE <= 0.005 against the reference it reproduces";
+constexpr std::string_view kThinWallTarget =
+    "issue 19 target: voxel-multi image RMSE <= 0.08 on walls of 4 voxels or more (kThinWallRmse)";
+constexpr std::string_view kRuleEvents =
+    "rule: the method follows the interfaces it finds (refraction.h's model), so most event sequences match "
+    "the reference's: at most 0.5";
+constexpr std::string_view kRuleTir =
+    "rule: every method mirrors on total internal reflection (refraction.h), so at least half the "
+    "reference's TIR pixels show it";
+constexpr std::string_view kRuleAcne =
+    "rule: a lit receiver is not darkened by its own voxels beyond the suite's 0.05 'off' threshold (RMSE)";
+constexpr std::string_view kRuleLeak =
+    "rule: a closed opaque slab stops the light: mean transmittance under it at most 0.1 (the small "
+    "version's slab is under one light-grid voxel)";
+constexpr std::string_view kDocGemEvents =
+    "documented failure: a faceted gem's rays reflect totally several times and voxel normals at facet edges "
+    "send them on other paths; measured / 1.5 to x 1.5";
+constexpr std::string_view kDocTouching =
+    "documented failure: two dielectrics within one voxel share boundary voxels (the case's failure mode); "
+    "measured / 1.5 to x 1.5";
+constexpr std::string_view kDocTwoSurfaces =
+    "documented failure: image-space refracts at two surfaces by design (Wyman 2005) where paths here meet "
+    "more; measured / 1.5 to x 1.5";
+constexpr std::string_view kDocCorners =
+    "documented failure: rays slip between voxels that touch at corners (the case's failure mode); measured "
+    "/ 1.5 to x 1.5";
+constexpr std::string_view kDocSearchStep =
+    "documented failure: surfaces closer than a search step along a ray are skipped (docs/methods.md, "
+    "distance maps); measured / 1.5 to x 1.5";
+constexpr std::string_view kDocThinForMaps =
+    "documented failure: a wall thinner than the maps' search step and texel footprint (under 2 voxels of "
+    "the fitted grid here) has its surfaces skipped (docs/methods.md, distance maps); measured / 1.5 to x "
+    "1.5";
+constexpr std::string_view kDocFilterAcne =
+    "documented failure: the filter's pre-filtered opacity darkens the lit leaf (the bias it trades against "
+    "leaks); measured / 1.5 to x 1.5";
+constexpr std::string_view kDocShells =
+    "documented failure: walls under a voxel cancel the voxel normals and hide the inner shell from "
+    "image-space: most event sequences differ; measured / 1.5 to 1";
+constexpr std::string_view kDocUnderTwoVoxels =
+    "documented failure: under 2 voxels a wall's two surfaces share boundary voxels (outside the voxel "
+    "methods' domain); measured / 1.5 to x 1.5";
+constexpr std::string_view kDocOverShadow =
+    "documented failure: above no shadow's error: conservative voxels (or the filter's blur along a grazing "
+    "view) darken lit receivers; measured / 1.5 to x 1.5";
+constexpr std::string_view kDocWorseThanUnrefracted =
+    "documented failure: image RMSE above the glass drawn unrefracted (RMSE favours a smooth wrong picture "
+    "over misplaced detail); measured / 1.5 to x 1.5";
+constexpr std::string_view kDocTwoInterfaces =
+    "documented failure: voxel-two meets two interfaces by design where the vase has four; measured / 1.5 to "
+    "x 1.5";
 
 struct Bound {
   std::string_view case_name, method;
   Measure measure;
-  double small, full;  // the bound of each version
+  double small, full;  // the bound of each version (at most, or at least for kTirFound)
+  std::string_view reason;
+  double low = -std::numeric_limits<double>::infinity();  // a documented failure's lower end (both versions)
 };
 
-// Measured 2026-11-30 on PoCL (2-core CPU, shared: load 6-13); each line's comment holds the values measured
-// then, small version first.
+// Each line's comment holds the values measured (small version first) on PoCL (2-core CPU, shared).
 // clang-format off
 constexpr Bound kBounds[] = {
-    {"grazing-light/80", "voxel-center", Measure::kShadowRmse, 0.11, 0.094},  // 0.06735, 0.06224
-    {"grazing-light/80", "voxel-conservative", Measure::kShadowRmse, 0.33, 0.32},  // 0.2157, 0.2084
-    {"grazing-light/80", "uniform", Measure::kShadowRmse, 0.11, 0.085},  // 0.06726, 0.05607
-    {"grazing-light/80", "filter", Measure::kShadowRmse, 0.14, 0.14},  // 0.08711, 0.08997
-    {"grazing-light/80", "opaque", Measure::kShadowRmse, 0.13, 0.13},  // 0.08663, 0.08499
-    {"grazing-light/85", "voxel-center", Measure::kShadowRmse, 0.2, 0.19},  // 0.1277, 0.1263
-    {"grazing-light/85", "voxel-conservative", Measure::kShadowRmse, 0.51, 0.5},  // 0.3349, 0.3271
-    {"grazing-light/85", "uniform", Measure::kShadowRmse, 0.16, 0.14},  // 0.1008, 0.08831
-    {"grazing-light/85", "filter", Measure::kShadowRmse, 0.2, 0.2},  // 0.1321, 0.1322
-    {"grazing-light/85", "opaque", Measure::kShadowRmse, 0.21, 0.21},  // 0.1335, 0.134
-    {"grazing-light/88", "voxel-center", Measure::kShadowRmse, 0.22, 0.22},  // 0.144, 0.1447
-    {"grazing-light/88", "voxel-conservative", Measure::kShadowRmse, 0.49, 0.49},  // 0.3237, 0.3228
-    {"grazing-light/88", "uniform", Measure::kShadowRmse, 0.19, 0.17},  // 0.1214, 0.1069
-    {"grazing-light/88", "filter", Measure::kShadowRmse, 0.22, 0.23},  // 0.1439, 0.1467
-    {"grazing-light/88", "opaque", Measure::kShadowRmse, 0.23, 0.23},  // 0.1472, 0.1503
-    {"grazing-view", "voxel-center", Measure::kShadowRmse, 0.0071, 0.006},  // 0.004676, 0.003986
-    {"grazing-view", "voxel-conservative", Measure::kShadowRmse, 0.046, 0.036},  // 0.03038, 0.02381
-    {"grazing-view", "uniform", Measure::kShadowRmse, 0.023, 0.016},  // 0.01504, 0.01033
-    {"grazing-view", "filter", Measure::kShadowRmse, 0.13, 0.13},  // 0.08361, 0.08481
-    {"grazing-view", "opaque", Measure::kShadowRmse, 0.058, 0.05},  // 0.03805, 0.03291
-    {"receivers-among-casters", "voxel-center", Measure::kShadowRmse, 0.2, 0.11},  // 0.1275, 0.06905
-    {"receivers-among-casters", "voxel-conservative", Measure::kShadowRmse, 0.5, 0.35},  // 0.3305, 0.232
-    {"receivers-among-casters", "uniform", Measure::kShadowRmse, 0.2, 0.12},  // 0.1304, 0.07392
-    {"receivers-among-casters", "filter", Measure::kShadowRmse, 0.35, 0.37},  // 0.2331, 0.2404
-    {"receivers-among-casters", "opaque", Measure::kShadowRmse, 0.34, 0.31},  // 0.2249, 0.2049
-    {"sheet-self-shadowing", "voxel-center", Measure::kShadowRmse, 0.061, 0.029},  // 0.04016, 0.01884
-    {"sheet-self-shadowing", "voxel-center", Measure::kAcne, 0.005, 0.005},  // 0, 0
-    {"sheet-self-shadowing", "voxel-center", Measure::kLeak, 0.075, 0.012},  // 0.04954, 0.007841
-    {"sheet-self-shadowing", "voxel-conservative", Measure::kShadowRmse, 0.12, 0.075},  // 0.07505, 0.04938
-    {"sheet-self-shadowing", "voxel-conservative", Measure::kAcne, 0.005, 0.005},  // 1.009e-06, 7.249e-07
-    {"sheet-self-shadowing", "voxel-conservative", Measure::kLeak, 0.0059, 0.005},  // 0.003884, 0.0002077
-    {"sheet-self-shadowing", "uniform", Measure::kShadowRmse, 0.13, 0.11},  // 0.08194, 0.06845
-    {"sheet-self-shadowing", "uniform", Measure::kAcne, 0.005, 0.005},  // 0, 0
-    {"sheet-self-shadowing", "uniform", Measure::kLeak, 0.92, 0.85},  // 0.6098, 0.5664
-    {"sheet-self-shadowing", "filter", Measure::kShadowRmse, 0.29, 0.29},  // 0.1927, 0.1928
-    {"sheet-self-shadowing", "filter", Measure::kAcne, 0.7, 0.71},  // 0.4632, 0.4712
-    {"sheet-self-shadowing", "filter", Measure::kLeak, 0.075, 0.012},  // 0.04954, 0.007841
-    {"sheet-self-shadowing", "opaque", Measure::kShadowRmse, 0.16, 0.15},  // 0.101, 0.0969
-    {"sheet-self-shadowing", "opaque", Measure::kAcne, 0.005, 0.005},  // 6.915e-09, 5.62e-09
-    {"sheet-self-shadowing", "opaque", Measure::kLeak, 0.075, 0.012},  // 0.04954, 0.007841
+    // Approximate methods whose error is above the purpose baseline (no shadow; glass unrefracted) on these
+    // cases: documented failures (2026-12-02: the baselines measured on the small version were 0.139, 0.190,
+    // 0.259, 0.049, 0.295 for the shadow cases, 0.080 to 0.107 for the refraction ones).
+    {"grazing-view", "filter", Measure::kShadowRmse, 0.13, 0.13, kDocOverShadow, 0.0557},  // 0.08361, 0.08481
+    {"receivers-among-casters", "voxel-conservative", Measure::kShadowRmse, 0.5, 0.5, kDocOverShadow, 0.154},  // 0.3305, 0.232
+    {"total-internal-reflection", "voxel-multi", Measure::kImageRmse, 0.14, 0.14, kDocWorseThanUnrefracted, 0.058},  // 0.08702, 0.09264
+    {"total-internal-reflection", "voxel-two", Measure::kImageRmse, 0.17, 0.17, kDocWorseThanUnrefracted, 0.0727},  // 0.1091, 0.1133
+    {"total-internal-reflection", "image-space", Measure::kImageRmse, 0.151, 0.151, kDocWorseThanUnrefracted, 0.0621},  // 0.1004, 0.09322
+    {"nested-thin-shells", "voxel-multi", Measure::kImageRmse, 0.148, 0.148, kDocWorseThanUnrefracted, 0.0642},  // 0.09877, 0.09626
+    {"nested-thin-shells", "voxel-two", Measure::kImageRmse, 0.15, 0.15, kDocWorseThanUnrefracted, 0.0652},  // 0.1001, 0.09777
+    {"multi-material/ball-figure", "image-space", Measure::kImageRmse, 0.215, 0.215, kDocWorseThanUnrefracted, 0.0952},  // 0.1428, 0.1433
+    {"multi-material/touching", "voxel-two", Measure::kImageRmse, 0.133, 0.133, kDocWorseThanUnrefracted, 0.0533},  // 0.08879, 0.07993
+    {"thin-wall/2", "voxel-multi", Measure::kImageRmse, 0.11, 0.11, kDocWorseThanUnrefracted, 0.0395},  // 0.07346, 0.0592
+    {"thin-wall/2", "voxel-two", Measure::kImageRmse, 0.11, 0.11, kDocWorseThanUnrefracted, 0.0407},  // 0.07347, 0.061
+    {"thin-wall/4", "voxel-two", Measure::kImageRmse, 0.108, 0.108, kDocWorseThanUnrefracted, 0.0378},  // 0.07202, 0.0567
+    {"thin-wall/0.5", "distance-maps", Measure::kImageRmse, 0.19, 0.19, kDocThinForMaps, 0.037},  // 0.05546, 0.1263
+    {"thin-wall/1", "distance-maps", Measure::kImageRmse, 0.148, 0.148, kDocThinForMaps, 0.0409},  // 0.06134, 0.0988
+    {"thin-wall/4", "distance-maps", Measure::kImageRmse, 0.103, 0.103, kDocWorseThanUnrefracted, 0.04},  // 0.06898, 0.06
+    {"thin-wall/8", "voxel-two", Measure::kImageRmse, 0.0996, 0.0996, kDocWorseThanUnrefracted, 0.0378},  // 0.06642, 0.0567
+    {"thin-wall/8", "distance-maps", Measure::kImageRmse, 0.104, 0.104, kDocWorseThanUnrefracted, 0.0406},  // 0.06933, 0.0609
+    {"sheet-self-shadowing", "voxel-center", Measure::kAcne, 0.05, 0.05, kRuleAcne},  // 0, 0
+    {"sheet-self-shadowing", "voxel-center", Measure::kLeak, 0.1, 0.1, kRuleLeak},  // 0.04954, 0.007841
+    {"sheet-self-shadowing", "voxel-conservative", Measure::kAcne, 0.05, 0.05, kRuleAcne},  // 1.009e-06, 7.249e-07
+    {"sheet-self-shadowing", "voxel-conservative", Measure::kLeak, 0.1, 0.1, kRuleLeak},  // 0.003884, 0.0002077
+    {"sheet-self-shadowing", "uniform", Measure::kAcne, 0.05, 0.05, kRuleAcne},  // 0, 0
+    {"sheet-self-shadowing", "uniform", Measure::kLeak, 0.1, 0.1, kRuleLeak},  // 0.04954 (uniform blocks with opaque casters since issue 20 kind 4)
+    {"sheet-self-shadowing", "filter", Measure::kAcne, 0.71, 0.71, kDocFilterAcne, 0.309},  // 0.4632, 0.4712
+    {"sheet-self-shadowing", "filter", Measure::kLeak, 0.1, 0.1, kRuleLeak},  // 0.04954, 0.007841
+    {"sheet-self-shadowing", "opaque", Measure::kAcne, 0.05, 0.05, kRuleAcne},  // 6.915e-09, 5.62e-09
+    {"sheet-self-shadowing", "opaque", Measure::kLeak, 0.1, 0.1, kRuleLeak},  // 0.04954, 0.007841
     // voxel-exact: requirements, not 1.5x a measurement — the issue's target (transmittance RMSE <= 0.005
     // against the reference it reproduces) and the suite's floor for acne and leaks; measured 0 on the small
     // cases (2026-12-02, PoCL), the full ones not run yet.
-    {"grazing-light/80", "voxel-exact", Measure::kShadowRmse, 0.005, 0.005},  // 0, not run
-    {"grazing-light/85", "voxel-exact", Measure::kShadowRmse, 0.005, 0.005},  // 0, not run
-    {"grazing-light/88", "voxel-exact", Measure::kShadowRmse, 0.005, 0.005},  // 0, not run
-    {"grazing-view", "voxel-exact", Measure::kShadowRmse, 0.005, 0.005},  // 0, not run
-    {"receivers-among-casters", "voxel-exact", Measure::kShadowRmse, 0.005, 0.005},  // 0, not run
-    {"sheet-self-shadowing", "voxel-exact", Measure::kShadowRmse, 0.005, 0.005},  // 0, not run
-    {"sheet-self-shadowing", "voxel-exact", Measure::kAcne, 0.005, 0.005},  // 0, not run
-    {"sheet-self-shadowing", "voxel-exact", Measure::kLeak, 0.005, 0.005},  // 0, not run
-    {"total-internal-reflection", "voxel-multi", Measure::kImageRmse, 0.14, 0.14},  // 0.08702, 0.09264
-    {"total-internal-reflection", "voxel-multi", Measure::kEventMismatch, 0.57, 0.73},  // 0.375, 0.4862
-    {"total-internal-reflection", "voxel-multi", Measure::kTirFound, 0.44, 0.44},  // 0.6689, 0.6744
-    {"total-internal-reflection", "voxel-two", Measure::kImageRmse, 0.17, 0.17},  // 0.1091, 0.1133
-    {"total-internal-reflection", "voxel-two", Measure::kEventMismatch, 0.59, 0.71},  // 0.3878, 0.4721
-    {"total-internal-reflection", "voxel-two", Measure::kTirFound, 0.44, 0.44},  // 0.6689, 0.6744
-    {"total-internal-reflection", "image-space", Measure::kImageRmse, 0.16, 0.14},  // 0.1004, 0.09322
-    {"total-internal-reflection", "image-space", Measure::kEventMismatch, 0.6, 0.58},  // 0.398, 0.3842
-    {"total-internal-reflection", "image-space", Measure::kTirFound, 0.63, 0.66},  // 0.9522, 0.9924
-    {"total-internal-reflection", "distance-maps", Measure::kImageRmse, 0.056, 0.058},  // 0.03723, 0.03823
-    {"total-internal-reflection", "distance-maps", Measure::kEventMismatch, 0.084, 0.082},  // 0.05541, 0.05404
-    {"total-internal-reflection", "distance-maps", Measure::kTirFound, 0.65, 0.65},  // 0.9829, 0.9807
-    {"nested-thin-shells", "voxel-multi", Measure::kImageRmse, 0.15, 0.15},  // 0.09877, 0.09626
-    // Documented, not bounded: walls under a voxel thick cancel the voxel normals and hide the inner shell
-    // from image-space, so (nearly) every event sequence differs; a share cannot exceed 1 to fail.
-    {"nested-thin-shells", "voxel-multi", Measure::kEventMismatch, kDocumented, kDocumented},  // 0.9913, 0.9978
-    {"nested-thin-shells", "voxel-two", Measure::kImageRmse, 0.16, 0.15},  // 0.1001, 0.09777
-    {"nested-thin-shells", "voxel-two", Measure::kEventMismatch, kDocumented, kDocumented},  // 1, 1
-    {"nested-thin-shells", "image-space", Measure::kImageRmse, 0.18, 0.17},  // 0.1136, 0.1133
-    {"nested-thin-shells", "image-space", Measure::kEventMismatch, kDocumented, kDocumented},  // 1, 1
-    {"nested-thin-shells", "distance-maps", Measure::kImageRmse, 0.025, 0.027},  // 0.01625, 0.01775
-    {"nested-thin-shells", "distance-maps", Measure::kEventMismatch, 0.024, 0.019},  // 0.01592, 0.01249
-    {"grazing-slab", "voxel-multi", Measure::kImageRmse, 0.14, 0.13},  // 0.09006, 0.08247
-    {"grazing-slab", "voxel-multi", Measure::kEventMismatch, 0.59, 0.43},  // 0.3925, 0.2803
-    {"grazing-slab", "voxel-two", Measure::kImageRmse, 0.15, 0.16},  // 0.09848, 0.1066
-    {"grazing-slab", "voxel-two", Measure::kEventMismatch, 0.57, 0.46},  // 0.3737, 0.3039
-    {"grazing-slab", "image-space", Measure::kImageRmse, 0.16, 0.16},  // 0.1038, 0.1046
-    {"grazing-slab", "image-space", Measure::kEventMismatch, 0.46, 0.46},  // 0.302, 0.3029
-    {"grazing-slab", "distance-maps", Measure::kImageRmse, 0.14, 0.15},  // 0.08977, 0.09548
-    {"grazing-slab", "distance-maps", Measure::kEventMismatch, 0.82, 0.82},  // 0.6333, 0.6387
-    {"voxel-corners", "voxel-multi", Measure::kImageRmse, 0.047, 0.069},  // 0.0307, 0.04571
-    {"voxel-corners", "voxel-multi", Measure::kEventMismatch, 0.58, 0.2},  // 0.382, 0.1272
-    {"voxel-corners", "voxel-two", Measure::kImageRmse, 0.048, 0.07},  // 0.03154, 0.04624
-    {"voxel-corners", "voxel-two", Measure::kEventMismatch, 0.76, 0.57},  // 0.5065, 0.3752
-    {"voxel-corners", "image-space", Measure::kImageRmse, 0.02, 0.02},  // 0.01296, 0.01287
-    {"voxel-corners", "image-space", Measure::kEventMismatch, 0.54, 0.51},  // 0.355, 0.3361
-    {"voxel-corners", "distance-maps", Measure::kImageRmse, 0.047, 0.035},  // 0.0308, 0.02328
-    {"voxel-corners", "distance-maps", Measure::kEventMismatch, 0.064, 0.036},  // 0.04221, 0.02357
-    {"multi-material/ball-figure", "voxel-multi", Measure::kImageRmse, 0.15, 0.091},  // 0.0972, 0.06029
-    {"multi-material/ball-figure", "voxel-multi", Measure::kEventMismatch, 0.59, 0.3},  // 0.3929, 0.1942
-    {"multi-material/ball-figure", "voxel-two", Measure::kImageRmse, 0.15, 0.089},  // 0.09725, 0.05875
-    {"multi-material/ball-figure", "voxel-two", Measure::kEventMismatch, 0.67, 0.32},  // 0.4414, 0.2133
-    {"multi-material/ball-figure", "image-space", Measure::kImageRmse, 0.22, 0.22},  // 0.1428, 0.1433
-    {"multi-material/ball-figure", "image-space", Measure::kEventMismatch, 0.86, 0.86},  // 0.7048, 0.7113
-    {"multi-material/ball-figure", "distance-maps", Measure::kImageRmse, 0.16, 0.16},  // 0.1039, 0.1052
-    {"multi-material/ball-figure", "distance-maps", Measure::kEventMismatch, 0.57, 0.58},  // 0.3799, 0.3862
-    {"multi-material/touching", "voxel-multi", Measure::kImageRmse, 0.13, 0.093},  // 0.08273, 0.06191
-    {"multi-material/touching", "voxel-multi", Measure::kEventMismatch, 0.75, 0.41},  // 0.4946, 0.2708
-    {"multi-material/touching", "voxel-two", Measure::kImageRmse, 0.14, 0.12},  // 0.08879, 0.07993
-    {"multi-material/touching", "voxel-two", Measure::kEventMismatch, 0.85, 0.8},  // 0.6831, 0.5883
-    {"multi-material/touching", "image-space", Measure::kImageRmse, 0.12, 0.12},  // 0.07695, 0.07772
-    {"multi-material/touching", "image-space", Measure::kEventMismatch, 0.84, 0.84},  // 0.673, 0.666
-    {"multi-material/touching", "distance-maps", Measure::kImageRmse, 0.12, 0.11},  // 0.07382, 0.07291
-    {"multi-material/touching", "distance-maps", Measure::kEventMismatch, 0.37, 0.35},  // 0.2451, 0.2331
+    {"grazing-light/80", "voxel-exact", Measure::kShadowRmse, 0.005, 0.005, kExactShadowTarget},  // 0, not run
+    {"grazing-light/85", "voxel-exact", Measure::kShadowRmse, 0.005, 0.005, kExactShadowTarget},  // 0, not run
+    {"grazing-light/88", "voxel-exact", Measure::kShadowRmse, 0.005, 0.005, kExactShadowTarget},  // 0, not run
+    {"grazing-view", "voxel-exact", Measure::kShadowRmse, 0.005, 0.005, kExactShadowTarget},  // 0, not run
+    {"receivers-among-casters", "voxel-exact", Measure::kShadowRmse, 0.005, 0.005, kExactShadowTarget},  // 0, not run
+    {"sheet-self-shadowing", "voxel-exact", Measure::kShadowRmse, 0.005, 0.005, kExactShadowTarget},  // 0, not run
+    {"sheet-self-shadowing", "voxel-exact", Measure::kAcne, 0.005, 0.005, kExactShadowTarget},  // 0, not run
+    {"sheet-self-shadowing", "voxel-exact", Measure::kLeak, 0.005, 0.005, kExactShadowTarget},  // 0, not run
+    {"total-internal-reflection", "voxel-multi", Measure::kEventMismatch, 0.73, 0.73, kDocGemEvents, 0.24},  // 0.375, 0.4862
+    {"total-internal-reflection", "voxel-multi", Measure::kTirFound, 0.5, 0.5, kRuleTir},  // 0.6689, 0.6744
+    {"total-internal-reflection", "voxel-two", Measure::kEventMismatch, 0.71, 0.71, kDocGemEvents, 0.25},  // 0.3878, 0.4721
+    {"total-internal-reflection", "voxel-two", Measure::kTirFound, 0.5, 0.5, kRuleTir},  // 0.6689, 0.6744
+    {"total-internal-reflection", "image-space", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.398, 0.3842
+    {"total-internal-reflection", "image-space", Measure::kTirFound, 0.5, 0.5, kRuleTir},  // 0.9522, 0.9924
+    {"total-internal-reflection", "distance-maps", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.05541, 0.05404
+    {"total-internal-reflection", "distance-maps", Measure::kTirFound, 0.5, 0.5, kRuleTir},  // 0.9829, 0.9807
+    // Documented: walls under a voxel thick cancel the voxel normals and hide the inner shell from image-space,
+    // so (nearly) every event sequence differs: held at 0.9 or more.
+    {"nested-thin-shells", "voxel-multi", Measure::kEventMismatch, 1, 1, kDocShells, 0.553},  // 0.8292 (media by winding), 0.9978 before
+    {"nested-thin-shells", "voxel-two", Measure::kEventMismatch, 1, 1, kDocShells, 0.9},  // 1, 1
+    {"nested-thin-shells", "image-space", Measure::kEventMismatch, 1, 1, kDocShells, 0.9},  // 1, 1
+    {"nested-thin-shells", "distance-maps", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.01592, 0.01249
+    {"grazing-slab", "voxel-multi", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.3925, 0.2803
+    {"grazing-slab", "voxel-two", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.3737, 0.3039
+    {"grazing-slab", "image-space", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.302, 0.3029
+    {"grazing-slab", "distance-maps", Measure::kEventMismatch, 0.96, 0.96, kDocSearchStep, 0.41},  // 0.6333, 0.6387
+    {"voxel-corners", "voxel-multi", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.382, 0.1272
+    {"voxel-corners", "voxel-two", Measure::kEventMismatch, 0.76, 0.76, kDocCorners, 0.25},  // 0.5065, 0.3752
+    {"voxel-corners", "image-space", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.355, 0.3361
+    {"voxel-corners", "distance-maps", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.04221, 0.02357
+    {"multi-material/ball-figure", "voxel-multi", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.3929, 0.1942
+    {"multi-material/ball-figure", "voxel-two", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.4414, 0.2133
+    {"multi-material/ball-figure", "image-space", Measure::kEventMismatch, 1, 1, kDocTwoSurfaces, 0.47},  // 0.7048, 0.7113
+    {"multi-material/ball-figure", "distance-maps", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.3799, 0.3862
+    {"multi-material/touching", "voxel-multi", Measure::kEventMismatch, 0.743, 0.743, kDocTouching, 0.18},  // 0.4946, 0.2708
+    {"multi-material/touching", "voxel-two", Measure::kEventMismatch, 1, 1, kDocTouching, 0.39},  // 0.6831, 0.5883
+    {"multi-material/touching", "image-space", Measure::kEventMismatch, 1, 1, kDocTwoSurfaces, 0.44},  // 0.673, 0.666
+    {"multi-material/touching", "distance-maps", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.2451, 0.2331
     // The thin-wall family, measured 2026-12-02 (small version and full at 640 x 480, grid 256), fitted grid.
     // Voxel methods under 2 voxels: outside their domain (the wall's two surfaces share boundary voxels, whose
-    // normals cancel or merge), documented with the measured value. voxel-two meets two interfaces by design
+    // normals cancel or merge), documented from the measured values. voxel-two meets two interfaces by design
     // where the vase has four: its event mismatch is documented. voxel-multi from 4 voxels: kThinWallRmse.
-    {"thin-wall/0.5", "voxel-multi", Measure::kImageRmse, kDocumented, kDocumented},  // 0.09048, 0.092
-    {"thin-wall/0.5", "voxel-multi", Measure::kEventMismatch, kDocumented, kDocumented},  // 0.7132, 0.8008
-    {"thin-wall/0.5", "voxel-two", Measure::kImageRmse, kDocumented, kDocumented},  // 0.08127, 0.0793
-    {"thin-wall/0.5", "voxel-two", Measure::kEventMismatch, kDocumented, kDocumented},  // 0.9102, 0.914
-    {"thin-wall/0.5", "image-space", Measure::kImageRmse, 0.081, 0.072},  // 0.05354, 0.0476
-    {"thin-wall/0.5", "image-space", Measure::kEventMismatch, 0.91, 0.91},  // 0.8117, 0.8177
-    {"thin-wall/0.5", "distance-maps", Measure::kImageRmse, 0.084, 0.19},  // 0.05546, 0.1263
-    {"thin-wall/0.5", "distance-maps", Measure::kEventMismatch, 0.35, 0.95},  // 0.2307, 0.8853
-    {"thin-wall/1", "voxel-multi", Measure::kImageRmse, kDocumented, kDocumented},  // 0.07517, 0.0839
-    {"thin-wall/1", "voxel-multi", Measure::kEventMismatch, kDocumented, kDocumented},  // 0.4065, 0.5343
-    {"thin-wall/1", "voxel-two", Measure::kImageRmse, kDocumented, kDocumented},  // 0.07611, 0.0736
-    {"thin-wall/1", "voxel-two", Measure::kEventMismatch, kDocumented, kDocumented},  // 0.8404, 0.8401
-    {"thin-wall/1", "image-space", Measure::kImageRmse, 0.081, 0.073},  // 0.05356, 0.0486
-    {"thin-wall/1", "image-space", Measure::kEventMismatch, 0.91, 0.91},  // 0.808, 0.8175
-    {"thin-wall/1", "distance-maps", Measure::kImageRmse, 0.093, 0.15},  // 0.06134, 0.0988
-    {"thin-wall/1", "distance-maps", Measure::kEventMismatch, 0.37, 0.65},  // 0.2444, 0.4301
-    {"thin-wall/2", "voxel-multi", Measure::kImageRmse, 0.12, 0.089},  // 0.07346, 0.0592
-    {"thin-wall/2", "voxel-multi", Measure::kEventMismatch, 0.4, 0.27},  // 0.2606, 0.176
-    {"thin-wall/2", "voxel-two", Measure::kImageRmse, 0.12, 0.092},  // 0.07347, 0.061
-    {"thin-wall/2", "voxel-two", Measure::kEventMismatch, kDocumented, kDocumented},  // 0.8092, 0.8209
-    {"thin-wall/2", "image-space", Measure::kImageRmse, 0.083, 0.078},  // 0.05471, 0.0516
-    {"thin-wall/2", "image-space", Measure::kEventMismatch, 0.91, 0.91},  // 0.808, 0.8186
-    {"thin-wall/2", "distance-maps", Measure::kImageRmse, 0.094, 0.085},  // 0.06241, 0.0561
-    {"thin-wall/2", "distance-maps", Measure::kEventMismatch, 0.41, 0.36},  // 0.2681, 0.2369
-    {"thin-wall/4", "voxel-multi", Measure::kImageRmse, kThinWallRmse, kThinWallRmse},  // 0.07091, 0.0503
-    {"thin-wall/4", "voxel-multi", Measure::kEventMismatch, 0.31, 0.2},  // 0.2045, 0.1325
-    {"thin-wall/4", "voxel-two", Measure::kImageRmse, 0.11, 0.086},  // 0.07202, 0.0567
-    {"thin-wall/4", "voxel-two", Measure::kEventMismatch, kDocumented, kDocumented},  // 0.8204, 0.8179
-    {"thin-wall/4", "image-space", Measure::kImageRmse, 0.088, 0.082},  // 0.05863, 0.0546
-    {"thin-wall/4", "image-space", Measure::kEventMismatch, 0.92, 0.92},  // 0.8304, 0.821
-    {"thin-wall/4", "distance-maps", Measure::kImageRmse, 0.11, 0.09},  // 0.06898, 0.06
-    {"thin-wall/4", "distance-maps", Measure::kEventMismatch, 0.49, 0.39},  // 0.3204, 0.2557
-    {"thin-wall/8", "voxel-multi", Measure::kImageRmse, kThinWallRmse, kThinWallRmse},  // 0.0619, 0.051
-    {"thin-wall/8", "voxel-multi", Measure::kEventMismatch, 0.38, 0.22},  // 0.2494, 0.1417
-    {"thin-wall/8", "voxel-two", Measure::kImageRmse, 0.1, 0.086},  // 0.06642, 0.0567
-    {"thin-wall/8", "voxel-two", Measure::kEventMismatch, kDocumented, kDocumented},  // 0.7943, 0.8172
-    {"thin-wall/8", "image-space", Measure::kImageRmse, 0.095, 0.084},  // 0.06329, 0.0558
-    {"thin-wall/8", "image-space", Measure::kEventMismatch, 0.93, 0.92},  // 0.8529, 0.827
-    {"thin-wall/8", "distance-maps", Measure::kImageRmse, 0.11, 0.092},  // 0.06933, 0.0609
-    {"thin-wall/8", "distance-maps", Measure::kEventMismatch, 0.55, 0.41},  // 0.3628, 0.2669
+    // The other image RMSEs: the purpose baseline.
+    {"thin-wall/0.5", "voxel-multi", Measure::kImageRmse, 0.138, 0.138, kDocUnderTwoVoxels, 0.06},  // 0.09048, 0.092
+    {"thin-wall/0.5", "voxel-multi", Measure::kEventMismatch, 1, 1, kDocUnderTwoVoxels, 0.475},  // 0.7132, 0.8008
+    {"thin-wall/0.5", "voxel-two", Measure::kImageRmse, 0.122, 0.122, kDocUnderTwoVoxels, 0.053},  // 0.08127, 0.0793
+    {"thin-wall/0.5", "voxel-two", Measure::kEventMismatch, 1, 1, kDocUnderTwoVoxels, 0.607},  // 0.9102, 0.914
+    {"thin-wall/0.5", "image-space", Measure::kEventMismatch, 1, 1, kDocTwoSurfaces, 0.54},  // 0.8117, 0.8177
+    {"thin-wall/0.5", "distance-maps", Measure::kEventMismatch, 1, 1, kDocThinForMaps, 0.148},  // 0.2307, 0.8853
+    {"thin-wall/1", "voxel-multi", Measure::kImageRmse, 0.126, 0.126, kDocUnderTwoVoxels, 0.05},  // 0.07517, 0.0839
+    {"thin-wall/1", "voxel-multi", Measure::kEventMismatch, 0.801, 0.801, kDocUnderTwoVoxels, 0.271},  // 0.4065, 0.5343
+    {"thin-wall/1", "voxel-two", Measure::kImageRmse, 0.114, 0.114, kDocUnderTwoVoxels, 0.049},  // 0.07611, 0.0736
+    {"thin-wall/1", "voxel-two", Measure::kEventMismatch, 1, 1, kDocUnderTwoVoxels, 0.56},  // 0.8404, 0.8401
+    {"thin-wall/1", "image-space", Measure::kEventMismatch, 1, 1, kDocTwoSurfaces, 0.54},  // 0.808, 0.8175
+    {"thin-wall/1", "distance-maps", Measure::kEventMismatch, 0.645, 0.645, kDocThinForMaps, 0.154},  // 0.2444, 0.4301
+    {"thin-wall/2", "voxel-multi", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.2606, 0.176
+    {"thin-wall/2", "voxel-two", Measure::kEventMismatch, 1, 1, kDocTwoInterfaces, 0.539},  // 0.8092, 0.8209
+    {"thin-wall/2", "image-space", Measure::kEventMismatch, 1, 1, kDocTwoSurfaces, 0.54},  // 0.808, 0.8186
+    {"thin-wall/2", "distance-maps", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.2681, 0.2369
+    {"thin-wall/4", "voxel-multi", Measure::kImageRmse, kThinWallRmse, kThinWallRmse, kThinWallTarget},  // 0.07091, 0.0503
+    {"thin-wall/4", "voxel-multi", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.2045, 0.1325
+    {"thin-wall/4", "voxel-two", Measure::kEventMismatch, 1, 1, kDocTwoInterfaces, 0.545},  // 0.8204, 0.8179
+    {"thin-wall/4", "image-space", Measure::kEventMismatch, 1, 1, kDocTwoSurfaces, 0.54},  // 0.8304, 0.821
+    {"thin-wall/4", "distance-maps", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.3204, 0.2557
+    {"thin-wall/8", "voxel-multi", Measure::kImageRmse, kThinWallRmse, kThinWallRmse, kThinWallTarget},  // 0.0619, 0.051
+    {"thin-wall/8", "voxel-multi", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.2494, 0.1417
+    {"thin-wall/8", "voxel-two", Measure::kEventMismatch, 1, 1, kDocTwoInterfaces, 0.53},  // 0.7943, 0.8172
+    {"thin-wall/8", "image-space", Measure::kEventMismatch, 1, 1, kDocTwoSurfaces, 0.54},  // 0.8529, 0.827
+    {"thin-wall/8", "distance-maps", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.3628, 0.2669
     // voxel-exact: requirements, not measurements (issue 19: PSNR >= 40 dB, i.e. image RMSE <= 0.01, and event
     // mismatch <= 1 % against the matched reference; its TIR is the reference's). Small version measured
     // 2026-12-02 (image RMSE, event mismatch) in the comments; the full one not yet.
-    {"total-internal-reflection", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 5.737e-06
-    {"total-internal-reflection", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0
-    {"total-internal-reflection", "voxel-exact", Measure::kTirFound, 0.99, 0.99},  // 1
-    {"nested-thin-shells", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 1.195e-05
-    {"nested-thin-shells", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0
-    {"grazing-slab", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 0.003134
-    {"grazing-slab", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0.0006959
-    {"voxel-corners", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 2.727e-07
-    {"voxel-corners", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0
-    {"multi-material/ball-figure", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 4.604e-06
-    {"multi-material/ball-figure", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0
-    {"multi-material/touching", "voxel-exact", Measure::kImageRmse, 0.01, 0.01},  // 0.007103
-    {"multi-material/touching", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01},  // 0.002901
+    {"total-internal-reflection", "voxel-exact", Measure::kImageRmse, 0.01, 0.01, kExactTarget},  // 5.737e-06
+    {"total-internal-reflection", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01, kExactTarget},  // 0
+    {"total-internal-reflection", "voxel-exact", Measure::kTirFound, 0.99, 0.99, kExactTarget},  // 1
+    {"nested-thin-shells", "voxel-exact", Measure::kImageRmse, 0.01, 0.01, kExactTarget},  // 1.195e-05
+    {"nested-thin-shells", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01, kExactTarget},  // 0
+    {"grazing-slab", "voxel-exact", Measure::kImageRmse, 0.01, 0.01, kExactTarget},  // 0.003134
+    {"grazing-slab", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01, kExactTarget},  // 0.0006959
+    {"voxel-corners", "voxel-exact", Measure::kImageRmse, 0.01, 0.01, kExactTarget},  // 2.727e-07
+    {"voxel-corners", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01, kExactTarget},  // 0
+    {"multi-material/ball-figure", "voxel-exact", Measure::kImageRmse, 0.01, 0.01, kExactTarget},  // 4.604e-06
+    {"multi-material/ball-figure", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01, kExactTarget},  // 0
+    {"multi-material/touching", "voxel-exact", Measure::kImageRmse, 0.01, 0.01, kExactTarget},  // 0.007103
+    {"multi-material/touching", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01, kExactTarget},  // 0.002901
+    // voxel-exact on the thin walls (it had none: the case's loosest, infinite, was used silently).
+    {"thin-wall/0.5", "voxel-exact", Measure::kImageRmse, 0.01, 0.01, kExactTarget},
+    {"thin-wall/0.5", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01, kExactTarget},
+    {"thin-wall/1", "voxel-exact", Measure::kImageRmse, 0.01, 0.01, kExactTarget},
+    {"thin-wall/1", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01, kExactTarget},
+    {"thin-wall/2", "voxel-exact", Measure::kImageRmse, 0.01, 0.01, kExactTarget},
+    {"thin-wall/2", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01, kExactTarget},
+    {"thin-wall/4", "voxel-exact", Measure::kImageRmse, 0.01, 0.01, kExactTarget},
+    {"thin-wall/4", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01, kExactTarget},
+    {"thin-wall/8", "voxel-exact", Measure::kImageRmse, 0.01, 0.01, kExactTarget},
+    {"thin-wall/8", "voxel-exact", Measure::kEventMismatch, 0.01, 0.01, kExactTarget},
 };
 // clang-format on
 
-// The bound of `measure` for `method` on case `name`; a method without one (added after the bounds were
-// measured) gets the case's loosest bound of that measure over the other methods, and says so in `note`.
-double bound_of(std::string_view name, std::string_view method, Measure measure, bool full, bool at_least,
-                std::string& note) {
-  std::optional<double> loosest;
-  for (const Bound& b : kBounds) {
-    if (b.case_name != name || b.measure != measure) continue;
-    const double v = full ? b.full : b.small;
-    if (b.method == method) return v;
-    loosest = !loosest ? v : at_least ? std::min(*loosest, v) : std::max(*loosest, v);
-  }
-  if (!loosest) fail("rendering_stability.cpp: no bound for {} on case {}", method, name);
-  note += note.empty() ? "" : "; ";
-  note += "no bound measured for this method: the case's loosest";
-  return *loosest;
+// kBounds' row of `measure` for `method` on case `name`, if any.
+const Bound* find_bound(std::string_view name, std::string_view method, Measure measure) {
+  for (const Bound& b : kBounds)
+    if (b.case_name == name && b.method == method && b.measure == measure) return &b;
+  return nullptr;
 }
 
 StabilityRow row(const std::string& name, const std::string& method, const std::string& measure, double value,
-                 double bound, bool at_least, std::string note) {
-  return stability_row(kFamily, name, method, measure, value, bound, at_least, std::move(note));
+                 double bound, bool at_least, std::string note, std::string reason) {
+  return stability_row(kFamily, name, method, measure, value, bound, at_least, std::move(note),
+                       std::move(reason));
 }
 
+// A row bounded by kBounds (which must hold it: rendering_stability_cases checks when it builds the cases);
+// without a row there, a purpose baseline (`baseline` and its reason) where the measure has one.
 StabilityRow measured_row(const std::string& name, const std::string& method, const std::string& measure,
-                          Measure key, double value, bool full, std::string note, bool at_least = false) {
-  const double bound = bound_of(name, method, key, full, at_least, note);
+                          Measure key, double value, bool full, std::string note, bool at_least = false,
+                          std::optional<std::pair<double, std::string>> baseline = std::nullopt) {
   // NaN never passes: value <= bound and value >= bound are both false.
-  return row(name, method, measure, value, bound, at_least, std::move(note));
+  if (const Bound* b = find_bound(name, method, key)) {
+    StabilityRow r = row(name, method, measure, value, full ? b->full : b->small, at_least, std::move(note),
+                         std::string(b->reason));
+    r.low = b->low;
+    return r;
+  }
+  if (!baseline) fail("rendering_stability.cpp: no bound for {} on case {}", method, name);
+  return row(name, method, measure, value, baseline->first, false, std::move(note), baseline->second);
 }
 
 bool finite(const glm::vec3& v) {
@@ -626,9 +659,11 @@ enum class SheetMeasures { kNone, kAcneAndLeaks };
 // transmittance at the same samples, non-finite pixels (image or transmittance; must be 0), and for the
 // sheet case acne (transmittance RMSE over the receivers on the lit leaf, exactly lit there) and leaks (the
 // mean transmittance, largest channel, of floor receivers the exact shadow leaves fully dark).
-// `required_rmse`: the RMSE rows' bound is this requirement (voxel-exact's own where tighter), not kBounds'.
+// `required_rmse`: the RMSE rows' bound is this requirement, for `required_reason` (voxel-exact's own where
+// tighter), not kBounds'.
 std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::string& name, RenderCase& s,
-                                          SheetMeasures sheet, std::optional<double> required_rmse = {}) {
+                                          SheetMeasures sheet, std::optional<double> required_rmse = {},
+                                          const std::string& required_reason = {}) {
   const Version v = version(ctx.full);
   FrameRenderer renderer(ctx.cl);
   renderer.set_scene(s.soup(), s.materials());
@@ -658,6 +693,12 @@ std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::stri
       fail("rendering_stability.cpp: case {} shows no lit leaf or no fully shadowed floor", name);
   }
 
+  // The purpose baseline: no shadow at all (transmittance 1) at the same receivers.
+  const std::vector<glm::vec3> unshadowed(exact.size(), glm::vec3(1.0f));
+  const double no_shadow = transmittance_error(unshadowed, exact, mask, 0.05).rmse;
+  const std::pair<double, std::string> shadow_baseline{
+      no_shadow,
+      fmt::format("purpose: below no shadow's transmittance RMSE ({:.4g}) at the same receivers", no_shadow)};
   std::vector<StabilityRow> rows;
   Picture picture;
   for (const ShadowCase& m : shadow_methods()) {
@@ -673,19 +714,21 @@ std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::stri
     std::string note =
         fmt::format("{} receivers, {:.1f}% off by > 0.05", e.receivers, 100.0 * e.share_over_threshold);
     if (required_rmse) {
-      const double bound = m.method == ShadowMethod::kVoxelExact
-                               ? std::min(*required_rmse, kVoxelExactShadowRmse)
-                               : *required_rmse;
+      const bool exact = m.method == ShadowMethod::kVoxelExact;
+      const double bound = exact ? std::min(*required_rmse, kVoxelExactShadowRmse) : *required_rmse;
       rows.push_back(
-          row(name, m.label, measure, e.rmse, bound, false, note + "; bound: issue 20's requirement"));
+          row(name, m.label, measure, e.rmse, bound, false, note,
+              exact && bound < *required_rmse ? std::string(kExactShadowTarget) : required_reason));
     } else {
-      rows.push_back(measured_row(name, m.label, measure, Measure::kShadowRmse, e.rmse, ctx.full, note));
+      rows.push_back(measured_row(name, m.label, measure, Measure::kShadowRmse, e.rmse, ctx.full, note, false,
+                                  shadow_baseline));
     }
     uint64_t nonfinite = 0;
     for (size_t i = 0; i < frame.image.pixels.size(); ++i)
       nonfinite += !finite(glm::vec3(frame.image.pixels[i])) || !finite(frame.transmittance[i]);
     rows.push_back(row(name, m.label, "non-finite pixels", double(nonfinite), 0.0, false,
-                       "image or transmittance NaN or infinite"));
+                       "image or transmittance NaN or infinite",
+                       "physics: radiance and transmittance are finite"));
     if (sheet == SheetMeasures::kAcneAndLeaks) {
       const TransmittanceError acne = transmittance_error(frame.transmittance, exact, leaf, 0.05);
       rows.push_back(measured_row(name, m.label, "acne: transmittance RMSE on the lit leaf", Measure::kAcne,
@@ -719,15 +762,32 @@ std::function<void(Scene&)> light_from_normal(double degrees) {
   };
 }
 
+// Throws voxr::Error when kBounds lacks a row of `measures` for one of `methods` on case `name`: a method
+// added without its bounds is an error when the suite is built, not a silent default.
+void require_bounds(const std::string& name, const std::vector<std::string>& methods,
+                    std::initializer_list<Measure> measures) {
+  for (const std::string& method : methods)
+    for (Measure m : measures)
+      if (!find_bound(name, method, m))
+        fail("rendering stability case {}: method {} has no bound for measure {} (kBounds)", name, method,
+             std::array{"shadow RMSE", "acne", "leak", "image RMSE", "event mismatch", "TIR found"}[int(m)]);
+}
+
 StabilityCase shadow_case(std::string name, std::string description, std::string_view json,
                           std::function<void(Scene&)> edit = {}, SheetMeasures sheet = SheetMeasures::kNone,
-                          std::optional<double> required_rmse = {}) {
+                          std::optional<double> required_rmse = {}, std::string required_reason = {}) {
+  std::vector<std::string> labels;
+  for (const ShadowCase& m : shadow_methods()) labels.push_back(m.label);
+  // voxel-exact is held to its target everywhere (kExactShadowTarget), the others to no shadow's RMSE.
+  if (!required_rmse) require_bounds(name, {"voxel-exact"}, {Measure::kShadowRmse});
+  if (sheet == SheetMeasures::kAcneAndLeaks) require_bounds(name, labels, {Measure::kAcne, Measure::kLeak});
   StabilityCase c;
   c.family = kFamily;
   c.name = name;
   c.description = std::move(description);
-  c.run = [name, json, edit, sheet, required_rmse](StabilityContext& ctx) {
-    return run_shadow_case(ctx, name, *make_scene(name, json, version(ctx.full), edit), sheet, required_rmse);
+  c.run = [name, json, edit, sheet, required_rmse, required_reason](StabilityContext& ctx) {
+    return run_shadow_case(ctx, name, *make_scene(name, json, version(ctx.full), edit), sheet, required_rmse,
+                           required_reason);
   };
   return c;
 }
@@ -771,10 +831,19 @@ std::vector<StabilityRow> run_refraction_case(StabilityContext& ctx, const std::
   const uint64_t reference_tir = tir_pixels(exact.paths);
   if (tir)
     rows.push_back(row(name, "reference", "pixels with total internal reflection", double(reference_tir), 1.0,
-                       true, "the matched reference's paths: the scene shows TIR"));
+                       true, "the matched reference's paths: the scene shows TIR",
+                       "physics: rays inside IOR 2.42 beyond 24.4 degrees reflect totally"));
   FrameRenderer renderer(ctx.cl);
   renderer.set_scene(s.soup(), s.materials(), &s.reference());
   renderer.set_environment(s.environment());
+  // The purpose baseline: the glass drawn unrefracted (--refraction none) with the same exact shadows.
+  RenderOptions unrefracted;
+  unrefracted.shadows = ShadowMethod::kReference;
+  unrefracted.refraction.method = RefractionMethod::kNone;
+  renderer.prepare(unrefracted);
+  const double none_rmse = rmse(renderer.render(s.light(), s.camera(), unrefracted).image, exact.image);
+  const std::pair<double, std::string> image_baseline{
+      none_rmse, fmt::format("purpose: below the image RMSE of the glass unrefracted ({:.4g})", none_rmse)};
   Picture picture;
   for (const RefractionMethodInfo& m : refraction_methods()) {
     const std::string method(m.name);
@@ -790,17 +859,19 @@ std::vector<StabilityRow> run_refraction_case(StabilityContext& ctx, const std::
       frame = renderer.render(s.light(), s.camera(), o);
     } catch (const Error& e) {
       const double nan = std::numeric_limits<double>::quiet_NaN();
-      rows.push_back(row(name, method, "image RMSE vs matched reference", nan, 0.0, false, e.what()));
+      rows.push_back(row(name, method, "image RMSE vs matched reference", nan, 0.0, false, e.what(),
+                         "rule: every method renders every case"));
       continue;
     }
     const RefractionError e = *measure_against_reference(frame, reference).refraction;
     rows.push_back(measured_row(name, method, "image RMSE vs matched reference", Measure::kImageRmse, e.rmse,
-                                ctx.full, fmt::format("PSNR {:.1f} dB", e.psnr)));
-    rows.push_back(measured_row(name, method, "event mismatch share of refracted pixels",
-                                Measure::kEventMismatch, e.event_mismatch_share, ctx.full,
-                                fmt::format("{} refracted pixels", e.refracted_pixels)));
+                                ctx.full, fmt::format("PSNR {:.1f} dB", e.psnr), false, image_baseline));
+    rows.push_back(measured_row(
+        name, method, "event mismatch share of refracted pixels", Measure::kEventMismatch,
+        e.event_mismatch_share, ctx.full,
+        fmt::format("{} refracted pixels, {} lost (not compared)", e.refracted_pixels, e.lost_pixels)));
     rows.push_back(row(name, method, "non-finite pixels", double(e.nonfinite_pixels), 0.0, false,
-                       "image NaN or infinite"));
+                       "image NaN or infinite", "physics: radiance is finite"));
     if (tir) {
       uint64_t both = 0;
       for (size_t i = 0; i < exact.paths.size(); ++i)
@@ -819,8 +890,18 @@ std::vector<StabilityRow> run_refraction_case(StabilityContext& ctx, const std::
 }
 
 // The cases measured before the fitted grid run on the whole scene's grid, as their bounds were measured.
+// The refraction methods' names, and the bounds every refraction case needs from kBounds.
+void require_refraction_bounds(const std::string& name, bool tir) {
+  std::vector<std::string> methods;
+  for (const RefractionMethodInfo& m : refraction_methods()) methods.emplace_back(m.name);
+  require_bounds(name, methods, {Measure::kEventMismatch});
+  require_bounds(name, {"voxel-exact"}, {Measure::kImageRmse});
+  if (tir) require_bounds(name, methods, {Measure::kTirFound});
+}
+
 StabilityCase refraction_case(std::string name, std::string description, std::string_view json,
                               bool tir = false) {
+  require_refraction_bounds(name, tir);
   StabilityCase c;
   c.family = kFamily;
   c.name = name;
@@ -836,6 +917,7 @@ StabilityCase thin_wall_case(double voxels) {
   StabilityCase c;
   c.family = kFamily;
   c.name = fmt::format("thin-wall/{:g}", voxels);
+  require_refraction_bounds(c.name, false);
   c.description = fmt::format(
       "A glass vase whose wall is {:g} voxels of the fitted refraction grid thick, standing on a floor with "
       "an opaque box inside and a torus behind (thin-vase-floor.json): under 1 voxel the wall's two surfaces "
@@ -869,14 +951,17 @@ std::vector<StabilityCase> rendering_stability_cases() {
             "crossing lies many slabs deeper in the neighbouring light-grid columns, so a lookup at the "
             "receiver's depth shadowed it; a plane cannot shadow itself (requirement: RMSE <= {})",
             degrees, kGrazingFloorRmse),
-        kLoneFloorScene, light_above_horizon(degrees), SheetMeasures::kNone, kGrazingFloorRmse));
+        kLoneFloorScene, light_above_horizon(degrees), SheetMeasures::kNone, kGrazingFloorRmse,
+        "issue 20 target: a plane is no caster of itself (transmittance exactly 1), RMSE <= 0.02"));
   cases.push_back(shadow_case(
       "grazing-floor-box/3",
       fmt::format(
           "The lone floor with a box on it, light 3 degrees above the horizon: the floor must stay lit "
           "and the box's long shadow must stay (requirement: RMSE <= {})",
           kFloorBoxRmse),
-      kFloorBoxScene, light_above_horizon(3), SheetMeasures::kNone, kFloorBoxRmse));
+      kFloorBoxScene, light_above_horizon(3), SheetMeasures::kNone, kFloorBoxRmse,
+      "rule: the floor stays lit and the box's shadow stays (no shadow measures >= 0.25, the floor shadowing "
+      "itself 0.31); the shadow's long edges blur over one light-grid column (0.04)"));
   cases.push_back(shadow_case(
       "far-point-light",
       fmt::format(
@@ -884,7 +969,8 @@ std::vector<StabilityCase> rendering_stability_cases() {
           "in 1/depth fall below float resolution and lost the shadow; the light is taken as parallel "
           "(requirement: RMSE <= {})",
           kFarPointLightRmse),
-      kFarPointLightScene, {}, SheetMeasures::kNone, kFarPointLightRmse));
+      kFarPointLightScene, {}, SheetMeasures::kNone, kFarPointLightRmse,
+      "issue 20 target: a point light 1e5 units up keeps the sphere's shadow, RMSE <= 0.05"));
   cases.push_back(shadow_case(
       "grazing-view",
       "Camera 2.5 degrees above the receiver plane: one pixel spans a long stretch of floor, so the "

@@ -20,6 +20,7 @@
 //                 change against the reference's (flicker).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -31,8 +32,12 @@
 
 namespace voxr {
 
-// One measure of one method on one case. `pass` is value <= bound (or, for a measure that must be at
-// least the bound, value >= bound: `at_least`).
+// One measure of one method on one case, checked against a bound that states a requirement and says which
+// (`reason`): physics ("physics: ..."), the method's documented rule ("rule: ..."), an issue's target
+// ("issue 19 target: ..."), the method's purpose ("purpose: better than ..."), or a documented failure held
+// in both directions ("documented failure: ...": low <= value <= bound, so a change either way is seen).
+// `pass` is low <= value <= bound (or, for a measure that must be at least the bound, value >= bound:
+// `at_least`). A row with no reason, or with an infinite bound (it could not fail), never passes.
 struct StabilityRow {
   std::string family;   // "voxelization", "rendering", "inputs", "temporal"
   std::string name;     // the case, e.g. "random-rotations/bunny"
@@ -41,18 +46,20 @@ struct StabilityRow {
   double value = 0.0;
   double bound = 0.0;
   bool at_least = false;
+  double low = -std::numeric_limits<double>::infinity();  // finite: a two-sided (documented) expectation
   std::string note;     // one short line: what the number means or what happened (an error's text)
+  std::string reason;   // where the bound comes from (shown on the page); see above
   std::string picture;  // optional: a small PNG written under StabilityContext::picture_dir (relative path)
-  bool pass() const { return at_least ? value >= bound : value <= bound; }
+  bool pass() const {
+    if (reason.empty() || std::isinf(bound)) return false;
+    return at_least ? value >= bound : (value <= bound && value >= low);
+  }
 };
 
-// The bound of a documented result, not a requirement: it always passes and the page shows "—".
-inline constexpr double kDocumented = std::numeric_limits<double>::infinity();
-
-// A row built from its fields (the families' `row` helpers).
+// A row built from its fields (the families' `row` helpers); `reason` as StabilityRow's.
 inline StabilityRow stability_row(std::string family, std::string name, std::string method,
                                   std::string measure, double value, double bound, bool at_least,
-                                  std::string note) {
+                                  std::string note, std::string reason = {}) {
   StabilityRow r;
   r.family = std::move(family);
   r.name = std::move(name);
@@ -62,7 +69,18 @@ inline StabilityRow stability_row(std::string family, std::string name, std::str
   r.bound = bound;
   r.at_least = at_least;
   r.note = std::move(note);
+  r.reason = std::move(reason);
   return r;
+}
+
+// A documented failure held in both directions: `row` passes when low <= value <= high; `why` says what the
+// failure is and where it is documented (the reason becomes "documented failure: " + why).
+inline StabilityRow documented(StabilityRow row, double low, double high, const std::string& why) {
+  row.at_least = false;
+  row.low = low;
+  row.bound = high;
+  row.reason = "documented failure: " + why;
+  return row;
 }
 
 struct StabilityContext {

@@ -25,8 +25,8 @@ struct StabilityCaseResult {
 std::vector<StabilityCaseResult> run_stability_cases(const std::vector<StabilityCase>& cases,
                                                      StabilityContext& ctx);
 
-// The rows of `results` that break their bound, one line each ("family name method: measure value > bound
-// (note)"); empty when all pass.
+// The rows of `results` that break their bound (or state no reason for it), one line each ("family name
+// method: measure value outside bound (note; bound: reason)"); empty when all pass.
 std::vector<std::string> stability_failures(const std::vector<StabilityCaseResult>& results);
 
 struct StabilityHeader {
@@ -37,12 +37,15 @@ struct StabilityHeader {
 };
 
 // The Markdown page: header, then per family (in order of first appearance) the cases' descriptions, one
-// table of all their rows, and their pictures (paths relative to `picture_link`, the folder the page
-// links pictures from). A bound of infinity is a documented result: shown as "—" and always passing.
+// table of all their rows (with each bound's reason), and their pictures (paths relative to `picture_link`,
+// the folder the page links pictures from).
 std::string stability_markdown(const std::vector<StabilityCaseResult>& results, const StabilityHeader& header,
                                const std::string& picture_link);
 
 // Formats a value or bound for the tables: integers as such, others with 4 significant digits.
 std::string format_stability_number(double v);
+
+// A row's bound as the page shows it: "≤ b", "≥ b", or "low to b" for a documented failure's range.
+std::string bound_text(const StabilityRow& row);
 
 }  // namespace voxr
