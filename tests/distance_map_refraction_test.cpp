@@ -84,7 +84,7 @@ TEST(DistanceMapRefraction, ReferencePointIsTheDielectricsCentre) {
 // Issue 20, kind 6: the camera-inside check. A glass box (material 1) with a glass box of another glass
 // (material 2) inside it and an opaque box (material 0) beside them: a point is inside the innermost
 // dielectric that holds it (the first odd material), in none outside or in the opaque box.
-TEST(DistanceMapRefraction, DielectricAroundAPointByParity) {
+TEST(DistanceMapRefraction, DielectricAroundAPointByWinding) {
   std::vector<Material> mats(3);
   mats[0].name = "stone";
   mats[1].name = "glass";
@@ -102,6 +102,18 @@ TEST(DistanceMapRefraction, DielectricAroundAPointByParity) {
   EXPECT_EQ(dielectric_around(soup, mats, {0.0f, 0.0f, 3.0f}), std::nullopt);
   EXPECT_EQ(dielectric_around(soup, mats, {4.0f, 0.0f, 0.0f}), std::nullopt) << "inside the opaque box";
   EXPECT_EQ(dielectric_around(soup, mats, {-9.0f, -9.0f, -9.0f}), std::nullopt);
+  // A box of the same glass nested in the first (by parity, an air bubble): inside both, so inside glass.
+  soup.append(make_box({1.0f, 1.0f, 1.0f}, {1.8f, 1.8f, 1.8f}), glm::mat4(1.0f), 1);
+  EXPECT_EQ(dielectric_around(soup, mats, {1.4f, 1.4f, 1.4f}), std::optional<uint32_t>(1u));
+  // Wound inside out, the same box is a cavity in the glass: outside every dielectric.
+  TriangleSoup cavity;
+  cavity.append(make_box({-2, -2, -2}, {2, 2, 2}), glm::mat4(1.0f), 1);
+  const size_t first = cavity.triangles.size();
+  cavity.append(make_box({1.0f, 1.0f, 1.0f}, {1.8f, 1.8f, 1.8f}), glm::mat4(1.0f), 1);
+  for (size_t t = first; t < cavity.triangles.size(); ++t)
+    std::swap(cavity.triangles[t].y, cavity.triangles[t].z);
+  EXPECT_EQ(dielectric_around(cavity, mats, {1.4f, 1.4f, 1.4f}), std::nullopt);
+  EXPECT_EQ(dielectric_around(cavity, mats, {0.0f, 0.0f, 0.0f}), std::optional<uint32_t>(1u));
 }
 
 // Rendering from inside the glass is refused with the material's name (it rendered a dark picture, every

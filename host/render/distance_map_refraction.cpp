@@ -27,33 +27,41 @@ float farthest_corner(const Bounds& b, const glm::vec3& from) {
   return r;
 }
 
-// Möller-Trumbore in double: whether the ray o + t d (t > 0) crosses the triangle (a, b, c).
-bool crosses(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& a, const glm::dvec3& b,
+// Möller-Trumbore in double: 0 when the ray o + t d (t > 0) misses the triangle (a, b, c), else +1 when it
+// leaves through it (along the winding normal (b - a) x (c - a)) and -1 when it enters.
+int crossing(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& a, const glm::dvec3& b,
              const glm::dvec3& c) {
   const glm::dvec3 e1 = b - a, e2 = c - a, p = glm::cross(d, e2);
-  const double det = glm::dot(e1, p);
-  if (det == 0.0) return false;
+  const double det = glm::dot(e1, p);  // = -dot(d, e1 x e2)
+  if (det == 0.0) return 0;
   const glm::dvec3 s = o - a;
   const double u = glm::dot(s, p) / det;
-  if (u < 0.0 || u > 1.0) return false;
+  if (u < 0.0 || u > 1.0) return 0;
   const glm::dvec3 q = glm::cross(s, e1);
   const double v = glm::dot(d, q) / det;
-  if (v < 0.0 || u + v > 1.0) return false;
-  return glm::dot(e2, q) / det > 0.0;
+  if (v < 0.0 || u + v > 1.0) return 0;
+  if (!(glm::dot(e2, q) / det > 0.0)) return 0;
+  return det < 0.0 ? 1 : -1;
 }
 
-// The first material crossed an odd number of times by a ray from `point`; corners hold 3 per triangle.
-std::optional<uint32_t> odd_crossings(const std::vector<glm::vec3>& corners,
-                                      const std::vector<uint32_t>& material_of, uint32_t material_count,
-                                      const glm::vec3& point) {
+// The first material holding `point` by the media stack's winding rule (media_stack.h): a ray from it to
+// infinity leaves each solid it is inside once more than it enters, so the signed sum of its crossings is
+// the number of nested solids of that material around it; a negative sum (an open or inside-out mesh) falls
+// back to parity. corners hold 3 per triangle.
+std::optional<uint32_t> material_around(const std::vector<glm::vec3>& corners,
+                                        const std::vector<uint32_t>& material_of, uint32_t material_count,
+                                        const glm::vec3& point) {
   // Off every axis and every diagonal, so that it meets no edge of an axis-aligned mesh head on.
   const glm::dvec3 dir = glm::normalize(glm::dvec3(0.5384, 0.7213, 0.4357));
-  std::vector<uint32_t> count(material_count, 0);
-  for (size_t t = 0; t < material_of.size(); ++t)
-    count[material_of[t]] += crosses(glm::dvec3(point), dir, glm::dvec3(corners[3 * t]),
-                                     glm::dvec3(corners[3 * t + 1]), glm::dvec3(corners[3 * t + 2]));
+  std::vector<int> sum(material_count, 0), count(material_count, 0);
+  for (size_t t = 0; t < material_of.size(); ++t) {
+    const int c = crossing(glm::dvec3(point), dir, glm::dvec3(corners[3 * t]), glm::dvec3(corners[3 * t + 1]),
+                           glm::dvec3(corners[3 * t + 2]));
+    sum[material_of[t]] += c;
+    count[material_of[t]] += c != 0;
+  }
   for (uint32_t m = 0; m < material_count; ++m)
-    if (count[m] % 2) return m;
+    if (sum[m] > 0 || (sum[m] < 0 && count[m] % 2)) return m;
   return std::nullopt;
 }
 
@@ -75,7 +83,7 @@ std::optional<uint32_t> dielectric_around(const TriangleSoup& soup, const std::v
   std::vector<glm::vec3> corners;
   std::vector<uint32_t> material_of;
   collect_dielectrics(soup, materials, corners, material_of);
-  return odd_crossings(corners, material_of, uint32_t(materials.size()), point);
+  return material_around(corners, material_of, uint32_t(materials.size()), point);
 }
 
 DistanceMapOrigin distance_map_origin(const TriangleSoup& soup, const std::vector<Material>& materials) {
@@ -149,8 +157,8 @@ void DistanceMapRefraction::trace(const DeviceMesh& mesh, const cl::Buffer& vert
   if (options.layer_res < kDistanceMapMinRes || options.layer_res > kDistanceMapMaxRes)
     fail("distance-maps: layer resolution {}; {} to {} texels are allowed", options.layer_res,
          kDistanceMapMinRes, kDistanceMapMaxRes);
-  if (const std::optional<uint32_t> around = odd_crossings(dielectric_corners_, dielectric_materials_,
-                                                           uint32_t(material_names_.size()), camera.eye))
+  if (const std::optional<uint32_t> around = material_around(dielectric_corners_, dielectric_materials_,
+                                                             uint32_t(material_names_.size()), camera.eye))
     fail(
         "--refraction distance-maps: the camera is inside the dielectric '{}'; the method traces paths "
         "from outside the glass (its maps hold no surface beyond it): use voxel-multi, voxel-exact or "

@@ -64,9 +64,11 @@ struct DistanceMapOrigin {
 };
 DistanceMapOrigin distance_map_origin(const TriangleSoup& soup, const std::vector<Material>& materials);
 
-// The dielectric material whose closed surface holds `point` (anchor-relative): the first material whose
-// triangles a ray from `point` (a fixed direction off every axis) crosses an odd number of times; nullopt
-// when there is none. Exact for closed meshes; an open sheet of dielectric counts by the side the ray leaves.
+// The dielectric material whose closed surface holds `point` (anchor-relative), by the media stack's winding
+// rule (kernels/common/media_stack.h): the first material whose triangles a ray from `point` (a fixed
+// direction off every axis) leaves more often than it enters (by their winding); where it enters more (an
+// open or inside-out mesh), an odd number of crossings. nullopt when there is none. Exact for closed meshes
+// wound outwards; an open sheet of dielectric counts by the side the ray leaves.
 std::optional<uint32_t> dielectric_around(const TriangleSoup& soup, const std::vector<Material>& materials,
                                           const glm::vec3& point);
 
