@@ -478,6 +478,37 @@ TEST(AssimpReader, HandWrittenGltfTriangle) {
   EXPECT_EQ(mesh.positions[mesh.indices[2]], glm::dvec3(0, 1, 0));
 }
 
+// Issue 20, kind 5: a glTF mesh of three primitives, on the file's materials 1, 0 and none, one triangle
+// each. Assimp numbers a glTF's materials in the order primitives first use them (its glTF reader loads
+// them lazily), so the faces carry 0, 1 and, for the primitive without one, Assimp's default material
+// after those: 2.
+TEST(AssimpReader, GltfPrimitivesKeepTheirMaterials) {
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::string buffer(reinterpret_cast<const char*>(positions), sizeof positions);
+  const std::string gltf = fmt::format(R"({{
+  "asset": {{"version": "2.0"}},
+  "scene": 0, "scenes": [{{"nodes": [0]}}], "nodes": [{{"mesh": 0}}],
+  "materials": [{{"name": "first"}}, {{"name": "second"}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "material": 1}},
+                              {{"attributes": {{"POSITION": 1}}, "material": 0}},
+                              {{"attributes": {{"POSITION": 2}}}}]}}],
+  "buffers": [{{"byteLength": 36, "uri": "data:application/octet-stream;base64,{}"}}],
+  "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 36}}],
+  "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                  "min": [0, 0, 0], "max": [1, 1, 0]}},
+                {{"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                  "min": [0, 0, 0], "max": [1, 1, 0]}},
+                {{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                  "min": [0, 0, 0], "max": [1, 1, 0]}}]
+}}
+)",
+                                       base64(buffer));
+  TempDir dir;
+  const PolygonMesh mesh = read_quietly(dir.write("three-prims.gltf", gltf));
+  ASSERT_EQ(mesh.face_count(), 3u);
+  EXPECT_EQ(mesh.materials, (std::vector<uint32_t>{0, 1, 2}));
+}
+
 TEST(AssimpReader, GltfVertexIndexOutOfRange) {
   TempDir dir;
   const std::string message = error_of(dir.write("bad-index.gltf", triangle_gltf({0, 1, 7}, 1)));
