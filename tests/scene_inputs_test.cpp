@@ -198,5 +198,57 @@ TEST(SceneInputs, SceneBelowThePrecisionOfItsCoordinatesWarns) {
   EXPECT_TRUE(parse_scene(test::far_scene_json(glm::dvec3(1e8, 0, 0), true), "f.json", ".").warnings.empty());
 }
 
+// Found by fuzz_scene (a key written "\\\\...\nname" in a material): a key, name or path holding a control
+// character was printed raw and split the message over lines. Every message quoting them stays one line
+// and bounded.
+TEST(SceneInputs, KeysNamesAndPathsWithControlCharactersAreQuotedOnOneLine) {
+  const std::string box = R"("meshes": [{"generator": "box"}])";
+  const std::string m = R"({"name": "a", "kind": "opaque"})";
+  const std::string long_key(300, 'k');
+  struct Case {
+    std::string text, expected;
+  };
+  const Case cases[] = {
+      {"{" + box + R"(, "materials": [)" + m + R"(, {"\\\nname": "b", "kind": "opaque"}]})",
+       R"(s.json: unknown key 'materials[1]."\\\nname"' (did you mean 'materials[1].name'?))"},
+      {"{" + box + R"(, "camera": {"pos\u0001": 1}})",
+       R"(s.json: unknown key 'camera."pos\u0001"' (allowed here: position, look_at, up, fov_deg, width, height))"},
+      {"{" + box + ", \"" + long_key + "\": 1}",
+       "s.json: unknown key '\"" + std::string(36, 'k') +
+           "...' (allowed here: materials, meshes, light, camera, environment, grid, animation)"},
+      {R"({"meshes": [{"generator": "box"}], "a\nb": 1, "a\nb": 2})", R"(s.json: duplicate key '"a\nb"')"},
+      {R"({"materials": [{"name": "x\ny", "kind": "opaque"}], "meshes": [{"generator": "box", "material": "z\tw"}]})",
+       R"(s.json: 'meshes[0].material' names no material: "z\tw" (materials: "x\ny"))"},
+      {R"({"materials": [{"name": "x\ny", "kind": "opaque"}, {"name": "x\ny", "kind": "opaque"}], )" + box +
+           "}",
+       R"(s.json: 'materials[1].name' repeats the material name "x\ny")"},
+      {R"({"materials": [{"name": "a", "kind": "op\naque"}], )" + box + "}",
+       R"(s.json: 'materials[0].kind' must be opaque, dielectric or sheet (got "op\naque"))"},
+      {R"({"meshes": [{"generator": "bo\rx"}]})",
+       R"(s.json: 'meshes[0].generator' must be one of torus, sphere, box, vase, tree, plane, foliage (got "bo\rx"))"},
+      {R"({"meshes": [{"file": "a\nb.obj"}]})",
+       R"(s.json: 'meshes[0].file' must be a path without control characters (got "a\nb.obj"))"},
+      {"{" + box + R"(, "environment": {"image": "sky\n.exr"}})",
+       R"(s.json: 'environment.image' must be a path without control characters (got "sky\n.exr"))"},
+  };
+  for (const Case& c : cases) {
+    const std::string what = scene_error(c.text);
+    EXPECT_EQ(what, c.expected) << c.text;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
+// The scene fuzzer's seeds (fuzz/corpus/scene) are scenes: each loads.
+TEST(SceneInputs, FuzzSeedsAreScenes) {
+  size_t files = 0;
+  for (const fs::directory_entry& e :
+       fs::directory_iterator(fs::path(VOXR_SOURCE_DIR) / "fuzz/corpus/scene")) {
+    SCOPED_TRACE(e.path().string());
+    EXPECT_FALSE(load_scene(e.path()).meshes.empty());
+    ++files;
+  }
+  EXPECT_EQ(files, 23u);
+}
+
 }  // namespace
 }  // namespace voxr

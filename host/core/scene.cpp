@@ -93,10 +93,18 @@ std::filesystem::path mesh_dir() {
   return env && *env ? std::filesystem::path(env) : std::filesystem::current_path() / "data" / "meshes";
 }
 
+// A path is named in messages (and in those of the mesh readers): a control character would break the line.
+void refuse_control_characters(const JsonObjectReader& in, std::string_view key, const std::string& path) {
+  if (std::any_of(path.begin(), path.end(),
+                  [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+    in.fail_key(key, fmt::format("must be a path without control characters (got {})", quoted_text(path)));
+}
+
 std::filesystem::path resolve_mesh_path(const JsonObjectReader& in, const std::string& text,
                                         const std::filesystem::path& base_dir) {
   namespace fs = std::filesystem;
   static constexpr std::string_view kPrefix = "$VOXR_MESH_DIR/";
+  refuse_control_characters(in, "file", text);
   std::error_code ec;
   if (std::string_view(text).substr(0, kPrefix.size()) == kPrefix) {
     const fs::path p = mesh_dir() / text.substr(kPrefix.size());
@@ -122,7 +130,7 @@ MaterialKind parse_kind(const JsonObjectReader& in) {
   if (kind == "opaque") return MaterialKind::kOpaque;
   if (kind == "dielectric") return MaterialKind::kDielectric;
   if (kind == "sheet") return MaterialKind::kSheet;
-  in.fail_key("kind", fmt::format("must be opaque, dielectric or sheet (got \"{}\")", kind));
+  in.fail_key("kind", fmt::format("must be opaque, dielectric or sheet (got {})", quoted_text(kind)));
 }
 
 glm::vec3 unit_color(const JsonObjectReader& in, std::string_view key, std::optional<glm::vec3> fallback) {
@@ -180,9 +188,11 @@ uint32_t find_material(const JsonObjectReader& in, const std::vector<Material>& 
   const std::string s = name.get<std::string>();
   for (size_t i = 0; i < materials.size(); ++i)
     if (materials[i].name == s) return uint32_t(i);
-  std::vector<std::string_view> known;
-  for (const Material& m : materials) known.push_back(m.name);
-  fail_json_value(in.where(), path, fmt::format("names no material: \"{}\" (materials: {})", s, join(known)));
+  std::vector<std::string> names;
+  for (const Material& m : materials) names.push_back(printable_key(m.name));
+  const std::vector<std::string_view> known(names.begin(), names.end());
+  fail_json_value(in.where(), path,
+                  fmt::format("names no material: {} (materials: {})", quoted_text(s), join(known)));
 }
 
 MeshInstance parse_mesh(const json& value, const std::string& where, const std::string& path,
@@ -206,7 +216,7 @@ MeshInstance parse_mesh(const json& value, const std::string& where, const std::
     const auto& names = generator_names();
     if (std::find(names.begin(), names.end(), name) == names.end()) {
       std::vector<std::string_view> known(names.begin(), names.end());
-      in.fail_key("generator", fmt::format("must be one of {} (got \"{}\")", join(known), name));
+      in.fail_key("generator", fmt::format("must be one of {} (got {})", join(known), quoted_text(name)));
     }
     const json* params = in.get("params");
     mesh.source = "generator:" + name;
@@ -265,7 +275,7 @@ Light parse_light(const json& value, const std::string& where) {
     light.direction = glm::normalize(d);
     in.forbid("position", "is not used by a directional light");
   } else {
-    in.fail_key("type", fmt::format("must be point or directional (got \"{}\")", light.type));
+    in.fail_key("type", fmt::format("must be point or directional (got {})", quoted_text(light.type)));
   }
   light.intensity = non_negative(in, "intensity", light.intensity);
   return light;
@@ -433,7 +443,8 @@ Scene parse_scene(std::string_view json_text, const std::string& label,
       const std::string path = fmt::format("materials[{}]", i);
       Material m = parse_material((*materials)[i], label, path);
       for (const Material& other : scene.materials)
-        if (other.name == m.name) fail("{}: '{}.name' repeats the material name \"{}\"", label, path, m.name);
+        if (other.name == m.name)
+          fail("{}: '{}.name' repeats the material name {}", label, path, quoted_text(m.name));
       scene.materials.push_back(std::move(m));
     }
   } else {
@@ -456,7 +467,9 @@ Scene parse_scene(std::string_view json_text, const std::string& label,
       fail("{}: 'environment' needs exactly one of 'color', 'image' and 'procedural'", label);
     if (in.has("color")) scene.environment.color = non_negative(in, "color", std::nullopt);
     if (in.has("image")) {
-      const std::filesystem::path image(in.string("image"));
+      const std::string image_text = in.string("image");
+      refuse_control_characters(in, "image", image_text);
+      const std::filesystem::path image(image_text);
       const std::filesystem::path resolved = image.is_absolute() ? image : base_dir / image;
       std::error_code ec;
       if (!std::filesystem::exists(resolved, ec))
@@ -467,7 +480,7 @@ Scene parse_scene(std::string_view json_text, const std::string& label,
       scene.environment.procedural = in.string("procedural");
       if (scene.environment.procedural != "checker")
         in.fail_key("procedural",
-                    fmt::format("must be \"checker\" (got \"{}\")", scene.environment.procedural));
+                    fmt::format("must be \"checker\" (got {})", quoted_text(scene.environment.procedural)));
     }
   }
   if (const json* grid = root.get("grid")) {

@@ -75,8 +75,19 @@ std::string join(const std::vector<std::string_view>& items) {
   return s;
 }
 
+std::string quoted_text(std::string_view text) {
+  return shown(json(std::string(text)));
+}
+
+std::string printable_key(std::string_view key) {
+  const bool plain = key.size() <= 40 && std::none_of(key.begin(), key.end(), [](char c) {
+                       return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+                     });
+  return plain ? std::string(key) : quoted_text(key);
+}
+
 std::string join_path(const std::string& base, std::string_view key) {
-  return base.empty() ? std::string(key) : base + "." + std::string(key);
+  return base.empty() ? printable_key(key) : base + "." + printable_key(key);
 }
 
 void fail_json_value(const std::string& where, const std::string& path, std::string_view what) {

@@ -73,9 +73,15 @@ glm::vec3 json_vec3(const nlohmann::json& value, const std::string& where, const
 // Compact JSON of a value for messages: at most 40 characters and 4 levels (deeper containers as [...] /
 // {...}), in work and stack bounded however large or deep the value is.
 std::string shown(const nlohmann::json& value);
+// A string from a scene as a message quotes it: in double quotes, JSON-escaped (a newline as \n), at most 40
+// characters (shown), so the message stays one line however the string was written.
+std::string quoted_text(std::string_view text);
+// A key or name shown bare in a message: as it is when it has at most 40 characters and no control
+// character, else quoted_text().
+std::string printable_key(std::string_view key);
 // "a, b, c".
 std::string join(const std::vector<std::string_view>& items);
-// "base.key", or "key" when base is empty.
+// "base.key", or "key" when base is empty; the key as printable_key shows it.
 std::string join_path(const std::string& base, std::string_view key);
 
 }  // namespace voxr
