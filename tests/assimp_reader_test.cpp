@@ -338,6 +338,35 @@ TEST(AssimpReader, ThreeMfRoundTrip) {
 TEST(AssimpReader, ColladaRoundTrip) {
   round_trip("collada", ".dae", kPolygons);
 }
+// Issue 20, kind 5: Collada and FBX faces carry their mesh's material index in Assimp's material list: the
+// test scene with two named materials, the cubes (the first mesh met) on the second and the hexagon on the
+// first, written by Assimp and read back. Assimp 5.2's Collada and FBX readers list materials in the order
+// meshes first use them, as its glTF reader does: 0 on every cube face, 1 on the hexagon.
+TEST(AssimpReader, ColladaAndFbxMeshesKeepTheirMaterials) {
+  for (const auto& [format, ext] :
+       {std::pair<std::string, std::string>{"collada", ".dae"}, {"fbxa", ".fbx"}}) {
+    SCOPED_TRACE(format);
+    const auto scene = make_scene();
+    delete scene->mMaterials[0];  // the one default material of make_scene
+    delete[] scene->mMaterials;
+    scene->mNumMaterials = 2;
+    scene->mMaterials = new aiMaterial* [2] { new aiMaterial, new aiMaterial };
+    for (unsigned m = 0; m < 2; ++m) {
+      const aiString name(m == 0 ? "hexagon-material" : "cube-material");
+      scene->mMaterials[m]->AddProperty(&name, AI_MATKEY_NAME);
+    }
+    scene->mMeshes[0]->mMaterialIndex = 1;  // the cube
+    scene->mMeshes[1]->mMaterialIndex = 0;  // the hexagon
+    TempDir dir;
+    const PolygonMesh mesh = read_quietly(export_scene(*scene, dir, format, ext));
+    ASSERT_EQ(mesh.materials.size(), mesh.face_count());
+    std::map<uint32_t, std::vector<uint32_t>> by_size;  // corners -> the faces' materials
+    for (size_t f = 0; f < mesh.face_count(); ++f) by_size[mesh.face_sizes[f]].push_back(mesh.materials[f]);
+    EXPECT_EQ(by_size[4], std::vector<uint32_t>(18, 0u));
+    EXPECT_EQ(by_size[6], std::vector<uint32_t>{1u});
+  }
+}
+
 // ASCII FBX: Assimp 5.2.5 cannot read back the binary FBX its own "fbx" exporter writes (below).
 TEST(AssimpReader, FbxRoundTrip) {
   round_trip("fbxa", ".fbx", kPolygons);
