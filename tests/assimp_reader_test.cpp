@@ -338,6 +338,35 @@ TEST(AssimpReader, ThreeMfRoundTrip) {
 TEST(AssimpReader, ColladaRoundTrip) {
   round_trip("collada", ".dae", kPolygons);
 }
+// Issue 20, kind 5: Collada and FBX faces carry their mesh's material index in Assimp's material list: the
+// test scene with two named materials, the cubes (the first mesh met) on the second and the hexagon on the
+// first, written by Assimp and read back. Assimp 5.2's Collada and FBX readers list materials in the order
+// meshes first use them, as its glTF reader does: 0 on every cube face, 1 on the hexagon.
+TEST(AssimpReader, ColladaAndFbxMeshesKeepTheirMaterials) {
+  for (const auto& [format, ext] :
+       {std::pair<std::string, std::string>{"collada", ".dae"}, {"fbxa", ".fbx"}}) {
+    SCOPED_TRACE(format);
+    const auto scene = make_scene();
+    delete scene->mMaterials[0];  // the one default material of make_scene
+    delete[] scene->mMaterials;
+    scene->mNumMaterials = 2;
+    scene->mMaterials = new aiMaterial* [2] { new aiMaterial, new aiMaterial };
+    for (unsigned m = 0; m < 2; ++m) {
+      const aiString name(m == 0 ? "hexagon-material" : "cube-material");
+      scene->mMaterials[m]->AddProperty(&name, AI_MATKEY_NAME);
+    }
+    scene->mMeshes[0]->mMaterialIndex = 1;  // the cube
+    scene->mMeshes[1]->mMaterialIndex = 0;  // the hexagon
+    TempDir dir;
+    const PolygonMesh mesh = read_quietly(export_scene(*scene, dir, format, ext));
+    ASSERT_EQ(mesh.materials.size(), mesh.face_count());
+    std::map<uint32_t, std::vector<uint32_t>> by_size;  // corners -> the faces' materials
+    for (size_t f = 0; f < mesh.face_count(); ++f) by_size[mesh.face_sizes[f]].push_back(mesh.materials[f]);
+    EXPECT_EQ(by_size[4], std::vector<uint32_t>(18, 0u));
+    EXPECT_EQ(by_size[6], std::vector<uint32_t>{1u});
+  }
+}
+
 // ASCII FBX: Assimp 5.2.5 cannot read back the binary FBX its own "fbx" exporter writes (below).
 TEST(AssimpReader, FbxRoundTrip) {
   round_trip("fbxa", ".fbx", kPolygons);
@@ -476,6 +505,37 @@ TEST(AssimpReader, HandWrittenGltfTriangle) {
   ASSERT_EQ(mesh.positions.size(), 3u);
   EXPECT_EQ(mesh.positions[mesh.indices[1]], glm::dvec3(1, 0, 0));
   EXPECT_EQ(mesh.positions[mesh.indices[2]], glm::dvec3(0, 1, 0));
+}
+
+// Issue 20, kind 5: a glTF mesh of three primitives, on the file's materials 1, 0 and none, one triangle
+// each. Assimp numbers a glTF's materials in the order primitives first use them (its glTF reader loads
+// them lazily), so the faces carry 0, 1 and, for the primitive without one, Assimp's default material
+// after those: 2.
+TEST(AssimpReader, GltfPrimitivesKeepTheirMaterials) {
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::string buffer(reinterpret_cast<const char*>(positions), sizeof positions);
+  const std::string gltf = fmt::format(R"({{
+  "asset": {{"version": "2.0"}},
+  "scene": 0, "scenes": [{{"nodes": [0]}}], "nodes": [{{"mesh": 0}}],
+  "materials": [{{"name": "first"}}, {{"name": "second"}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "material": 1}},
+                              {{"attributes": {{"POSITION": 1}}, "material": 0}},
+                              {{"attributes": {{"POSITION": 2}}}}]}}],
+  "buffers": [{{"byteLength": 36, "uri": "data:application/octet-stream;base64,{}"}}],
+  "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 36}}],
+  "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                  "min": [0, 0, 0], "max": [1, 1, 0]}},
+                {{"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                  "min": [0, 0, 0], "max": [1, 1, 0]}},
+                {{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                  "min": [0, 0, 0], "max": [1, 1, 0]}}]
+}}
+)",
+                                       base64(buffer));
+  TempDir dir;
+  const PolygonMesh mesh = read_quietly(dir.write("three-prims.gltf", gltf));
+  ASSERT_EQ(mesh.face_count(), 3u);
+  EXPECT_EQ(mesh.materials, (std::vector<uint32_t>{0, 1, 2}));
 }
 
 TEST(AssimpReader, GltfVertexIndexOutOfRange) {

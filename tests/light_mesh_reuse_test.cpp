@@ -29,13 +29,16 @@ struct DefaultScene {
   CameraFrame camera(float turn) const {
     Camera c = scene.camera;
     const float cs = std::cos(turn), sn = std::sin(turn);
-    const glm::vec3 d = c.position - c.look_at;
-    c.position = c.look_at + glm::vec3(cs * d.x + sn * d.z, d.y, -sn * d.x + cs * d.z);
+    const glm::dvec3 d = c.position - c.look_at;
+    c.position = c.look_at + glm::dvec3(cs * d.x + sn * d.z, d.y, -sn * d.x + cs * d.z);
     return make_camera_frame(c, soup.anchor, soup.bounds(), 80, 60);
   }
   RenderLight light(float dx) const {
     Light l = scene.light;
-    (l.type == "directional" ? l.direction : l.position).x += dx;  // only what the light's kind reads
+    if (l.type == "directional")  // only what the light's kind reads
+      l.direction.x += dx;
+    else
+      l.position.x += dx;
     return render_light(l, environment.mean(), soup.anchor);
   }
 };

@@ -768,6 +768,22 @@ TEST(MeshReadersObj, PolygonsWAndColoursIgnoredStatementsAndCrlf) {
   }
 }
 
+// Issue 20, kind 5: `usemtl` names number the faces' materials in the order faces first use them; the faces
+// before any `usemtl` (and after a bare one) count as one more name. One name in all: no ids.
+TEST(MeshReadersObj, UsemtlGroupsNumberMaterialsInOrderOfFirstUse) {
+  const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+  EXPECT_EQ(read_obj("m.obj", v + "f 1 2 3\nusemtl red\nf 1 2 4\nusemtl dark blue\nf 1 3 4\n"
+                                  "usemtl red\nf 2 3 4\nf 1 2 3\nusemtl\nf 1 2 4\n")
+                .materials,
+            (std::vector<uint32_t>{0, 1, 2, 1, 1, 0}));
+  // A name used first by no face takes no id; a group of faces after several usemtl lines gets the last.
+  EXPECT_EQ(read_obj("m.obj", v + "usemtl unused\nusemtl b\nf 1 2 3\nusemtl a\nf 1 2 4\nusemtl b\nf 1 3 4\n")
+                .materials,
+            (std::vector<uint32_t>{0, 1, 0}));
+  EXPECT_TRUE(read_obj("m.obj", v + "usemtl only\nf 1 2 3\nf 1 2 4\n").materials.empty());
+  EXPECT_TRUE(read_obj("m.obj", v + "f 1 2 3\nusemtl later\n").materials.empty());
+}
+
 TEST(MeshReadersObj, ErrorsNameTheLine) {
   const std::string head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n# faces\n";  // lines 1-5
   auto obj_error = [](const std::string& text) {

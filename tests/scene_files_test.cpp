@@ -180,7 +180,7 @@ TEST(SceneFiles, ShadowScenesFrameCastersAndShadows) {
       // The shadow of the mesh's centre: along the light's rays down to the floor, inside it and in view.
       const glm::vec3 centre = 0.5f * (b.lo + b.hi);
       const glm::vec3 dir =
-          scene.light.type == "point" ? centre - scene.light.position : scene.light.direction;
+          scene.light.type == "point" ? centre - glm::vec3(scene.light.position) : scene.light.direction;
       ASSERT_LT(dir.y, 0.0f) << m.source << ": the light must shine down on it";
       const glm::vec3 shadow = centre + dir * ((floor_bounds.lo.y - centre.y) / dir.y);
       EXPECT_TRUE(shadow.x > floor_bounds.lo.x && shadow.x < floor_bounds.hi.x &&

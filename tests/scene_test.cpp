@@ -85,7 +85,7 @@ TEST(Scene, LoadsEverySection) {
   EXPECT_EQ(s.light.type, "directional");
   EXPECT_EQ(s.light.direction, glm::vec3(0, -1, 0));
   EXPECT_EQ(s.light.intensity, glm::vec3(2.0f));
-  EXPECT_EQ(s.camera.position, glm::vec3(0, 1, 5));
+  EXPECT_EQ(s.camera.position, glm::dvec3(0, 1, 5));
   EXPECT_EQ(s.camera.up, glm::vec3(0, 1, 0));
   EXPECT_EQ(s.camera.fov_deg, 30.0f);
   EXPECT_EQ(s.camera.width, 640u);
@@ -141,8 +141,9 @@ TEST(Scene, BadValuesNameTheirKey) {
       {R"({"materials": [{"name": "a", "kind": "opaque"}], "meshes": [{"generator": "box", "material": "b"}]})",
        "s.json: 'meshes[0].material' names no material: \"b\" (materials: a)"},
       {R"({"materials": [{"name": "a", "kind": "opaque"}], "meshes": [{"generator": "tree", "material": ["a"]}]})",
-       "s.json: 'meshes[0].material' must list a material for each of the mesh's material ids 0..1 (got "
-       "[\"a\"])"},
+       "s.json: 'meshes[0].material' must list a material for each of the material ids 0..1 that "
+       "generator:tree "
+       "carries (got [\"a\"])"},
       {R"({"materials": []})", "s.json: 'materials' must be a non-empty array of materials (got [])"},
       {R"({})", "s.json: missing required key 'meshes'"},
       {R"({"meshes": {}})", "s.json: 'meshes' must be a non-empty array of meshes (got {})"},
@@ -296,13 +297,14 @@ TEST(Scene, DefaultsFrameTheScene) {
   const glm::vec3 view = glm::normalize(s.camera.look_at - s.camera.position);
   for (int i = 0; i < 8; ++i) {
     const glm::vec3 corner(i & 1 ? 4 : 0, i & 2 ? 2 : 0, i & 4 ? 2 : 0);
-    const float angle = glm::degrees(std::acos(glm::dot(view, glm::normalize(corner - s.camera.position))));
+    const float angle =
+        glm::degrees(std::acos(glm::dot(view, glm::normalize(corner - glm::vec3(s.camera.position)))));
     EXPECT_LT(angle, 22.5f);
   }
   EXPECT_EQ(s.light.type, "point");
   EXPECT_GT(s.light.position.y, 2.0f);  // above
   EXPECT_GT(s.light.position.z, 2.0f);  // in front
-  const glm::vec3 d = s.light.position - center;
+  const glm::vec3 d = glm::vec3(s.light.position) - center;
   EXPECT_NEAR(s.light.intensity.x / glm::dot(d, d), 1.0f, 1e-5f);
 }
 

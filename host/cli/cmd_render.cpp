@@ -47,6 +47,7 @@
 #include "render/distance_map_refraction.h"
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
+#include "render/light_frame.h"
 #include "render/render_scene.h"
 #include "util/clock.h"
 #include "util/file_extension.h"
@@ -167,6 +168,7 @@ int run_render(const RenderArgs& args) {
   const char* cr = tty ? "\r" : "";
   for (const MeshInstance& m : loaded.meshes)
     for (const std::string& w : m.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
+  for (const std::string& w : loaded.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
   const bool animated = is_animated(loaded);
   const uint32_t width = size.x ? size.x : loaded.camera.width,
                  height = size.y ? size.y : loaded.camera.height;
@@ -237,6 +239,16 @@ int run_render(const RenderArgs& args) {
                       {"stages", stages}});
     if (pattern) write_image(last.image, pattern->name(f));
   };
+  // Runs `frame` (which renders); a point light no light frame can hold (fit_light_frame) is named as the
+  // scene file gives it.
+  const auto placing_light = [&](auto&& frame) {
+    try {
+      return frame();
+    } catch (const LightPlacementError& e) {
+      const glm::dvec3 p = scene.light.position;
+      fail("{}: 'light.position' ({:g}, {:g}, {:g}) {}", scene.source, p.x, p.y, p.z, e.reason());
+    }
+  };
   const auto wait_start = Clock::now();
   PreparedRuntime<FrameRenderer> prepared = background.get();
   const double wait_ms = ms_since(wait_start);
@@ -253,11 +265,13 @@ int run_render(const RenderArgs& args) {
   if (args.error_target) {
     // The grids are chosen on frame 0 (an animated scene's `soup` is its frame 0).
     if (animated) prepared.engine->set_scene(soup, materials, &scene_reference());
-    target = choose_render_grids(*prepared.engine, *reference_scene(), render_mats, light, environment,
+    target = placing_light([&] {
+      return choose_render_grids(*prepared.engine, *reference_scene(), render_mats, light, environment,
                                  scene.camera, soup.anchor, bounds, width, height, *args.error_target,
                                  &options, [&](const std::string& line) {
                                    if (tty) fmt::print(stderr, "\r{:<60}\rerror target: {}", "", line);
                                  });
+    });
     if (tty) fmt::print(stderr, "\r{:<60}\rrendering...", "");
   }
   for (uint32_t f = 0; f < args.frames; ++f) {
@@ -274,7 +288,7 @@ int run_render(const RenderArgs& args) {
       if (options.shadows == ShadowMethod::kReference && !reference_only) reference_scene();
       pose_ms = ms_since(pose_start);
     }
-    last = prepared.engine->render(light, camera, options, &stats);
+    last = placing_light([&] { return prepared.engine->render(light, camera, options, &stats); });
     nlohmann::json frame_stages = nlohmann::json::object();
     for (const auto& [name, ms] : stats.stage_ms) {
       frame_stages[name] = ms;
@@ -288,7 +302,8 @@ int run_render(const RenderArgs& args) {
     fixed.keep_samples = false;
     if (target->refraction) fixed.refraction.resolution = kRenderTargetHighest;
     if (target->shadows) fixed.shadow_resolution = kRenderTargetHighest;
-    for (int i = 0; i < 2; ++i) prepared.engine->render(light, camera, fixed, &fixed_stats);
+    for (int i = 0; i < 2; ++i)
+      placing_light([&] { return prepared.engine->render(light, camera, fixed, &fixed_stats); });
   }
   nlohmann::json stages = nlohmann::json::object();
   for (const auto& [name, ms] : stage_ms) stages[name] = median(ms);

@@ -207,6 +207,7 @@ int run_voxelize(const VoxelizeArgs& args) {
   const char* cr = tty ? "\r" : "";
   for (const MeshInstance& m : scene.meshes)
     for (const std::string& w : m.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
+  for (const std::string& w : scene.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
   TriangleSoup soup = take_scene_triangles(scene);
   const size_t degenerate = validate_soup(soup, scene.source);
   const Bounds bounds = soup.bounds();

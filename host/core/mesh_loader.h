@@ -1,6 +1,8 @@
 // Mesh files -> triangle soup. OFF, OBJ, PLY and STL are read by voxr's own readers (mesh/mesh_readers.h),
 // in double precision; glTF, FBX, Collada and 3MF through Assimp (mesh/assimp_reader.h). Polygons are
-// triangulated exactly (mesh/polygon_triangulation.h); every triangle gets material id 0.
+// triangulated exactly (mesh/polygon_triangulation.h). Each triangle gets its face's material id as the
+// reader numbers them: in the order faces first use the file's materials (OBJ: `usemtl` names; glTF,
+// Collada, FBX: Assimp's material index, assimp_reader.h), 0 when the file has none.
 #pragma once
 
 #include <filesystem>

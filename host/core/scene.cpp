@@ -33,28 +33,54 @@ glm::mat4 make_transform(glm::vec3 scale, glm::vec3 rotate_deg, glm::vec3 transl
   return glm::scale(m, scale);
 }
 
-Camera default_camera(const Bounds& bounds) {
+namespace {
+
+bool box_empty(const WorldBox& b) {
+  return !(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z);
+}
+
+// Centre and radius of the bounding sphere of `bounds` (the unit sphere at the origin when it is empty or a
+// point), in double.
+std::pair<glm::dvec3, double> framing_sphere(const WorldBox& bounds) {
+  if (box_empty(bounds)) return {glm::dvec3(0.0), 1.0};
+  const double radius = 0.5 * glm::length(bounds.hi - bounds.lo);
+  return {0.5 * (bounds.lo + bounds.hi), radius > 0.0 ? radius : 1.0};
+}
+
+}  // namespace
+
+Camera default_camera(const WorldBox& bounds) {
   Camera camera;
-  const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : 0.5f * (bounds.lo + bounds.hi);
-  float radius = 0.5f * glm::length(bounds.size());
-  if (!(radius > 0.0f)) radius = 1.0f;
+  const auto [center, radius] = framing_sphere(bounds);
   camera.look_at = center;
   // Far enough that the bounding sphere fits the vertical field of view, with a little room.
-  const float distance = 1.1f * radius / std::sin(0.5f * glm::radians(camera.fov_deg));
-  camera.position = center + distance * glm::normalize(glm::vec3(0.0f, 0.25f, 1.0f));
+  const double distance = 1.1 * radius / std::sin(0.5 * glm::radians(double(camera.fov_deg)));
+  camera.position = center + distance * glm::normalize(glm::dvec3(0.0, 0.25, 1.0));
   return camera;
 }
 
-Light default_light(const Bounds& bounds) {
+Light default_light(const WorldBox& bounds) {
   Light light;
-  const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : 0.5f * (bounds.lo + bounds.hi);
-  float radius = 0.5f * glm::length(bounds.size());
-  if (!(radius > 0.0f)) radius = 1.0f;
+  const auto [center, radius] = framing_sphere(bounds);
   light.type = "point";
-  light.position = center + radius * glm::vec3(1.0f, 3.0f, 2.0f);
-  const glm::vec3 d = light.position - center;
-  light.intensity = glm::vec3(glm::dot(d, d));  // irradiance 1 at the centre
+  const glm::dvec3 d = radius * glm::dvec3(1.0, 3.0, 2.0);
+  light.position = center + d;
+  light.intensity = glm::vec3(float(glm::dot(d, d)));  // irradiance 1 at the centre
   return light;
+}
+
+std::string precision_warning(const WorldBox& bounds, const std::string& label) {
+  if (box_empty(bounds)) return "";
+  const glm::dvec3 far = glm::max(glm::abs(bounds.lo), glm::abs(bounds.hi));
+  const double magnitude = std::max({far.x, far.y, far.z});
+  const glm::dvec3 size = bounds.hi - bounds.lo;
+  const double extent = std::max({size.x, size.y, size.z});
+  const double step = std::nextafter(magnitude, std::numeric_limits<double>::infinity()) - magnitude;
+  if (!(extent < 65536.0 * step)) return "";
+  return fmt::format(
+      "{}: the scene spans {:.3g} units at {:.3g} from the origin, where coordinates are {:.3g} apart: {} "
+      "across it, so its positions are quantised; translate it nearer the origin",
+      label, extent, magnitude, step, extent < step ? "less than one step" : "fewer than 65536 steps");
 }
 
 namespace {
@@ -67,10 +93,18 @@ std::filesystem::path mesh_dir() {
   return env && *env ? std::filesystem::path(env) : std::filesystem::current_path() / "data" / "meshes";
 }
 
+// A path is named in messages (and in those of the mesh readers): a control character would break the line.
+void refuse_control_characters(const JsonObjectReader& in, std::string_view key, const std::string& path) {
+  if (std::any_of(path.begin(), path.end(),
+                  [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+    in.fail_key(key, fmt::format("must be a path without control characters (got {})", quoted_text(path)));
+}
+
 std::filesystem::path resolve_mesh_path(const JsonObjectReader& in, const std::string& text,
                                         const std::filesystem::path& base_dir) {
   namespace fs = std::filesystem;
   static constexpr std::string_view kPrefix = "$VOXR_MESH_DIR/";
+  refuse_control_characters(in, "file", text);
   std::error_code ec;
   if (std::string_view(text).substr(0, kPrefix.size()) == kPrefix) {
     const fs::path p = mesh_dir() / text.substr(kPrefix.size());
@@ -96,7 +130,7 @@ MaterialKind parse_kind(const JsonObjectReader& in) {
   if (kind == "opaque") return MaterialKind::kOpaque;
   if (kind == "dielectric") return MaterialKind::kDielectric;
   if (kind == "sheet") return MaterialKind::kSheet;
-  in.fail_key("kind", fmt::format("must be opaque, dielectric or sheet (got \"{}\")", kind));
+  in.fail_key("kind", fmt::format("must be opaque, dielectric or sheet (got {})", quoted_text(kind)));
 }
 
 glm::vec3 unit_color(const JsonObjectReader& in, std::string_view key, std::optional<glm::vec3> fallback) {
@@ -154,9 +188,11 @@ uint32_t find_material(const JsonObjectReader& in, const std::vector<Material>& 
   const std::string s = name.get<std::string>();
   for (size_t i = 0; i < materials.size(); ++i)
     if (materials[i].name == s) return uint32_t(i);
-  std::vector<std::string_view> known;
-  for (const Material& m : materials) known.push_back(m.name);
-  fail_json_value(in.where(), path, fmt::format("names no material: \"{}\" (materials: {})", s, join(known)));
+  std::vector<std::string> names;
+  for (const Material& m : materials) names.push_back(printable_key(m.name));
+  const std::vector<std::string_view> known(names.begin(), names.end());
+  fail_json_value(in.where(), path,
+                  fmt::format("names no material: {} (materials: {})", quoted_text(s), join(known)));
 }
 
 MeshInstance parse_mesh(const json& value, const std::string& where, const std::string& path,
@@ -180,7 +216,7 @@ MeshInstance parse_mesh(const json& value, const std::string& where, const std::
     const auto& names = generator_names();
     if (std::find(names.begin(), names.end(), name) == names.end()) {
       std::vector<std::string_view> known(names.begin(), names.end());
-      in.fail_key("generator", fmt::format("must be one of {} (got \"{}\")", join(known), name));
+      in.fail_key("generator", fmt::format("must be one of {} (got {})", join(known), quoted_text(name)));
     }
     const json* params = in.get("params");
     mesh.source = "generator:" + name;
@@ -207,7 +243,13 @@ MeshInstance parse_mesh(const json& value, const std::string& where, const std::
     uint32_t used = 0;
     for (const glm::uvec4& t : mesh.soup.triangles) used = std::max(used, t.w);
     in.require(used < map.size(), "material",
-               fmt::format("must list a material for each of the mesh's material ids 0..{}", used));
+               fmt::format("must list a material for each of the material ids 0..{} that {} carries", used,
+                           mesh.source));
+    if (map.size() > used + 1)
+      mesh.warnings.push_back(fmt::format(
+          "{}: carries {} material id{} (0..{}) but '{}' in {} lists {} materials; the last {} {} unused",
+          mesh.source, used + 1, used == 0 ? "" : "s", used, in.path("material"), where, map.size(),
+          map.size() - used - 1, map.size() - used - 1 == 1 ? "is" : "are"));
     for (glm::uvec4& t : mesh.soup.triangles) t.w = map[t.w];
     mesh.material = TriangleSoup::kKeepMaterial;
   } else {
@@ -225,7 +267,7 @@ Light parse_light(const json& value, const std::string& where) {
   Light light;
   light.type = in.string("type");
   if (light.type == "point") {
-    light.position = in.vec3("position");
+    light.position = in.dvec3("position");
     in.forbid("direction", "is not used by a point light");
   } else if (light.type == "directional") {
     const glm::vec3 d = in.vec3("direction");
@@ -233,7 +275,7 @@ Light parse_light(const json& value, const std::string& where) {
     light.direction = glm::normalize(d);
     in.forbid("position", "is not used by a directional light");
   } else {
-    in.fail_key("type", fmt::format("must be point or directional (got \"{}\")", light.type));
+    in.fail_key("type", fmt::format("must be point or directional (got {})", quoted_text(light.type)));
   }
   light.intensity = non_negative(in, "intensity", light.intensity);
   return light;
@@ -243,11 +285,11 @@ Camera parse_camera(const json& value, const std::string& where) {
   const JsonObjectReader in(value, where, "camera",
                             {"position", "look_at", "up", "fov_deg", "width", "height"});
   Camera camera;
-  camera.position = in.vec3("position");
-  camera.look_at = in.vec3("look_at");
+  camera.position = in.dvec3("position");
+  camera.look_at = in.dvec3("look_at");
   in.require(camera.look_at != camera.position, "look_at", "must differ from 'position'");
   camera.up = in.vec3("up", camera.up);
-  const glm::vec3 view = glm::normalize(camera.look_at - camera.position);
+  const glm::vec3 view(glm::normalize(camera.look_at - camera.position));
   in.require(
       glm::length(camera.up) > 0.0f && glm::length(glm::cross(view, glm::normalize(camera.up))) > 1e-4f, "up",
       "must be non-zero and not parallel to the view direction");
@@ -312,6 +354,13 @@ json parse_json(std::string_view text, const std::string& where) {
     }
     return path;
   };
+  // The quoted key path of the value being parsed (with the key or index of the innermost container).
+  auto value_path = [&]() {
+    std::string path;
+    for (const Frame& f : stack)
+      path = f.array ? path + fmt::format("[{}]", f.index) : join_path(path, f.key);
+    return path.empty() ? std::string("the top-level value") : "'" + path + "'";
+  };
   auto finish_value = [&]() {
     if (!stack.empty() && stack.back().array) ++stack.back().index;
   };
@@ -355,12 +404,23 @@ json parse_json(std::string_view text, const std::string& where) {
         reason.starts_with("[json.exception") && bracket != std::string::npos)
       reason = reason.substr(bracket + 2);
     fail("{}: JSON {}", where, reason);
+  } catch (const json::out_of_range& e) {
+    // "[json.exception.out_of_range.406] number overflow parsing '1e400'": a number beyond a double's range
+    // (the parser has no line or column for it, but the callback knows the key path).
+    const std::string reason = e.what();
+    const size_t quote = reason.find('\'');
+    std::string number = quote == std::string::npos ? std::string() : reason.substr(quote);
+    if (number.size() > 42) number = number.substr(0, 38) + "...'";
+    fail("{}: {} holds the number {}, which is out of range (beyond 1.8e308)", where, value_path(),
+         number.empty() ? "given" : number);
   }
 }
 
+// The defaults not given, framed in double from the scene's world bounds, and the precision warning.
 void apply_defaults(Scene& scene, bool has_light, bool has_camera, bool has_environment) {
-  if (has_light && has_camera && has_environment) return;
-  const Bounds bounds = scene_bounds(scene);
+  const WorldBox bounds = scene_world_bounds(scene);
+  if (std::string w = precision_warning(bounds, scene.source); !w.empty())
+    scene.warnings.push_back(std::move(w));
   if (!has_light) scene.light = default_light(bounds);
   if (!has_camera) scene.camera = default_camera(bounds);
   if (!has_environment) scene.environment.color = kDefaultEnvironment;
@@ -383,7 +443,8 @@ Scene parse_scene(std::string_view json_text, const std::string& label,
       const std::string path = fmt::format("materials[{}]", i);
       Material m = parse_material((*materials)[i], label, path);
       for (const Material& other : scene.materials)
-        if (other.name == m.name) fail("{}: '{}.name' repeats the material name \"{}\"", label, path, m.name);
+        if (other.name == m.name)
+          fail("{}: '{}.name' repeats the material name {}", label, path, quoted_text(m.name));
       scene.materials.push_back(std::move(m));
     }
   } else {
@@ -406,7 +467,9 @@ Scene parse_scene(std::string_view json_text, const std::string& label,
       fail("{}: 'environment' needs exactly one of 'color', 'image' and 'procedural'", label);
     if (in.has("color")) scene.environment.color = non_negative(in, "color", std::nullopt);
     if (in.has("image")) {
-      const std::filesystem::path image(in.string("image"));
+      const std::string image_text = in.string("image");
+      refuse_control_characters(in, "image", image_text);
+      const std::filesystem::path image(image_text);
       const std::filesystem::path resolved = image.is_absolute() ? image : base_dir / image;
       std::error_code ec;
       if (!std::filesystem::exists(resolved, ec))
@@ -417,7 +480,7 @@ Scene parse_scene(std::string_view json_text, const std::string& label,
       scene.environment.procedural = in.string("procedural");
       if (scene.environment.procedural != "checker")
         in.fail_key("procedural",
-                    fmt::format("must be \"checker\" (got \"{}\")", scene.environment.procedural));
+                    fmt::format("must be \"checker\" (got {})", quoted_text(scene.environment.procedural)));
     }
   }
   if (const json* grid = root.get("grid")) {
@@ -518,25 +581,33 @@ TriangleSoup scene_triangles(const Scene& scene) {
   return out;
 }
 
-Bounds scene_bounds(const Scene& scene) {
+WorldBox scene_world_bounds(const Scene& scene) {
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   if (is_animated(scene)) {
     const TriangleSoup soup = scene_triangles(scene);
     const Bounds b = soup.bounds();
-    return b.empty()
-               ? b
-               : Bounds{glm::vec3(glm::dvec3(b.lo) + soup.anchor), glm::vec3(glm::dvec3(b.hi) + soup.anchor)};
+    if (!b.empty()) lo = glm::dvec3(b.lo) + soup.anchor, hi = glm::dvec3(b.hi) + soup.anchor;
+    return WorldBox(lo, hi);
   }
-  Bounds bounds;
   for (const MeshInstance& m : scene.meshes) {
     std::vector<bool> used(m.soup.positions.size(), false);
     for (const glm::uvec4& t : m.soup.triangles) used[t.x] = used[t.y] = used[t.z] = true;
+    const glm::dmat4 transform(m.transform);
     for (size_t i = 0; i < used.size(); ++i)
       if (used[i]) {
-        const glm::dvec4 p = glm::dmat4(m.transform) *
-                             glm::dvec4(m.soup.anchor + glm::dvec3(glm::vec3(m.soup.positions[i])), 1.0);
-        bounds.extend(glm::vec3(glm::dvec3(p) / p.w));
+        const glm::dvec4 p =
+            transform * glm::dvec4(m.soup.anchor + glm::dvec3(glm::vec3(m.soup.positions[i])), 1.0);
+        lo = glm::min(lo, glm::dvec3(p) / p.w);
+        hi = glm::max(hi, glm::dvec3(p) / p.w);
       }
   }
+  return WorldBox(lo, hi);
+}
+
+Bounds scene_bounds(const Scene& scene) {
+  const WorldBox b = scene_world_bounds(scene);
+  Bounds bounds;
+  if (!box_empty(b)) bounds.lo = glm::vec3(b.lo), bounds.hi = glm::vec3(b.hi);
   return bounds;
 }
 

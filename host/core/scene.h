@@ -28,16 +28,18 @@
 
 namespace voxr {
 
+// Positions are world coordinates in double, as the scene file gives them (a scene 1e8 from the origin keeps
+// its light and camera where they were written; RenderCase makes them anchor-relative floats).
 struct Light {
   std::string type = "point";              // "point" | "directional"
-  glm::vec3 position{0.0f};                // point
+  glm::dvec3 position{0.0};                // point
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional: unit vector, the way the light travels
   glm::vec3 intensity{1.0f};  // point: irradiance at distance d is intensity / d^2; directional: irradiance
 };
 
 struct Camera {
-  glm::vec3 position{0.0f, 0.0f, 5.0f};
-  glm::vec3 look_at{0.0f};
+  glm::dvec3 position{0.0, 0.0, 5.0};
+  glm::dvec3 look_at{0.0};
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float fov_deg = 45.0f;  // vertical
   uint32_t width = 512, height = 512;
@@ -74,6 +76,9 @@ struct Scene {
   bool grid_given = false;   // the scene file had a "grid" object
   double fps = kDefaultFps;  // frames per second of an animation
   std::string source;        // the scene file, the mesh file, or a description of a built-in scene
+  // About the whole scene, one line each (a scene too small for the precision of its coordinates);
+  // the meshes' own are in MeshInstance::warnings.
+  std::vector<std::string> warnings;
 };
 
 // Reads a scene file. Throws voxr::Error naming the file and the key path at fault (or the line and
@@ -97,16 +102,25 @@ TriangleSoup scene_triangles(const Scene& scene);
 // soup is 36 MB); that mesh's soup is left empty. For callers done with the scene's meshes.
 TriangleSoup take_scene_triangles(Scene& scene);
 
-// World-space bounds of all meshes (float: for framing cameras and lights).
+// World-space bounds of the vertices all meshes' triangles use, in double (lo > hi when there are none).
+WorldBox scene_world_bounds(const Scene& scene);
+// The same rounded to float.
 Bounds scene_bounds(const Scene& scene);
 
 // Scale, then rotate about X, Y and Z (degrees, in that order), then translate.
 glm::mat4 make_transform(glm::vec3 scale, glm::vec3 rotate_deg, glm::vec3 translate);
 
 // Camera in front of `bounds` (on +Z, slightly raised) looking at its centre with a 45 degree field of
-// view, far enough to see all of it.
-Camera default_camera(const Bounds& bounds);
-// Point light above, in front of and to the right of `bounds`, bright enough for irradiance ~1 at the centre.
-Light default_light(const Bounds& bounds);
+// view, far enough to see all of it. Fitted in double: a scene far from the origin gets the camera of the
+// same scene at the origin, translated (bounds with lo > hi: the unit sphere's).
+Camera default_camera(const WorldBox& bounds);
+// Point light above, in front of and to the right of `bounds`, bright enough for irradiance ~1 at the
+// centre; fitted in double as default_camera is.
+Light default_light(const WorldBox& bounds);
+
+// One line naming `label` when the extent of `bounds` (its longest side) spans fewer than 65 536 steps of a
+// double at its largest coordinate (a 6-unit scene 1e13 from the origin: steps of 0.002): its positions are
+// quantised, and where a step exceeds the extent the scene collapses; empty otherwise.
+std::string precision_warning(const WorldBox& bounds, const std::string& label);
 
 }  // namespace voxr

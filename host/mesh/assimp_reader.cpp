@@ -91,6 +91,7 @@ void append_instance(const std::string& name, const aiMesh& mesh, const glm::dma
     for (unsigned c = 0; c < face.mNumIndices; ++c) corners[c] = id[face.mIndices[c]];
     if (mirrored) std::reverse(corners.begin(), corners.end());
     out.add_face(corners.data(), uint32_t(corners.size()));
+    out.materials.push_back(mesh.mMaterialIndex);
   }
 }
 
@@ -196,6 +197,10 @@ PolygonMesh read_with_assimp(const fs::path& file) {
   if (out.face_count() == 0)
     fail("{}: no polygon faces ({} meshes; skipped {} points and {} lines)", name, scene->mNumMeshes,
          skipped.points, skipped.lines);
+  // Every face on material 0 says no more than no materials at all (PolygonMesh: empty when the file has
+  // none).
+  if (std::all_of(out.materials.begin(), out.materials.end(), [](uint32_t m) { return m == 0; }))
+    out.materials.clear();
   return out;
 }
 

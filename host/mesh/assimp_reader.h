@@ -21,7 +21,11 @@ bool is_assimp_extension(const std::filesystem::path& file);
 // their corner count (no triangulation); corners at identical positions are merged (CornerWelder, over the
 // whole file), so a closed mesh stays closed by index. Winding is reversed under mirroring transforms so
 // faces keep their orientation. Points and lines are skipped (they have no area); skinning, morph targets and
-// animation are ignored (the bind pose is read). `materials` stays empty.
+// animation are ignored (the bind pose is read). `materials` gives each face its aiMesh's mMaterialIndex,
+// Assimp's number for the material, which for glTF, Collada and FBX is the order in which meshes first use
+// the file's materials (Assimp's glTF reader loads materials as primitives reference them, walking the nodes
+// depth-first, so a glTF's own `materials` index is not kept; a primitive without one gets Assimp's default
+// material after those); empty when every face has material 0.
 // Throws voxr::Error, one line starting with the path: missing or empty file, unknown extension, a file that
 // does not look like its format (checked before Assimp sees it), a file Assimp cannot parse or validate (with
 // Assimp's message), a position that is not finite or beyond 1e30 after its transforms, or no polygon faces

@@ -1,6 +1,7 @@
-// Wavefront OBJ: positions from `v`, polygons from `f`; texture coordinates, normals, groups, materials,
-// lines and points carry no area and are ignored.
+// Wavefront OBJ: positions from `v`, polygons from `f`, material ids from `usemtl`; texture coordinates,
+// normals, groups, material libraries, lines and points carry no area and are ignored.
 #include <algorithm>
+#include <map>
 
 #include "mesh/mesh_readers.h"
 #include "util/text_scan.h"
@@ -33,6 +34,10 @@ PolygonMesh read_obj(const std::string& name, std::string_view bytes) {
   std::string_view line;
   std::vector<std::string_view> tokens;
   std::vector<uint32_t> corners;
+  // Material ids in order of first use by a face: the faces before any `usemtl` (or after a bare `usemtl`)
+  // form the group named "", counted like any other.
+  std::map<std::string, uint32_t, std::less<>> ids;
+  std::string_view group;
   size_t number = 0;
   while (lines.next(line, number)) {
     text::split(line, '#', tokens);
@@ -47,8 +52,18 @@ PolygonMesh read_obj(const std::string& name, std::string_view bytes) {
       for (size_t k = 1; k < tokens.size(); ++k)
         corners.push_back(corner_index(name, number, tokens[k], mesh.positions.size()));
       mesh.add_face(corners.data(), uint32_t(corners.size()));
+      auto id = ids.find(group);
+      if (id == ids.end()) id = ids.emplace(std::string(group), uint32_t(ids.size())).first;
+      mesh.materials.push_back(id->second);
+    } else if (tokens[0] == "usemtl") {
+      // The name is the rest of the statement (names may hold spaces).
+      group = tokens.size() > 1
+                  ? std::string_view(tokens[1].data(),
+                                     tokens.back().data() + tokens.back().size() - tokens[1].data())
+                  : std::string_view();
     }
   }
+  if (ids.size() <= 1) mesh.materials.clear();  // one material: every face has id 0
   return mesh;
 }
 

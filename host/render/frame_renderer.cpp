@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "render/render_scene.h"
 #include "render/vertex_normals.h"
 #include "util/clock.h"
@@ -179,6 +181,19 @@ RenderedFrame FrameRenderer::render_once(const RenderLight& light, const CameraF
       frame.transmittance = std::move(host.transmittance);
     }
   } else {
+    // The per-pixel buffers grow with the image alone: a size beyond the device's largest buffer is refused
+    // naming --size (cl_runtime's generic advice, a smaller --res, would not help).
+    const bool any_paths = (refract.writes_ends() && scene_has_dielectric_) || options.keep_samples;
+    const uint64_t per_pixel =
+        std::max<uint64_t>(sizeof(SurfaceSample), any_paths ? sizeof(RefractionPath) : 0);
+    if (pixels * per_pixel > cl_.device().max_allocation)
+      fail(
+          "a {}x{} image needs {:.1f} MiB for its per-pixel {} but the largest buffer {} allows is {:.1f} "
+          "MiB; "
+          "use a smaller --size",
+          camera.width, camera.height, double(pixels * per_pixel) / (1 << 20),
+          per_pixel == sizeof(SurfaceSample) ? "surface samples" : "refraction paths", cl_.device().name,
+          double(cl_.device().max_allocation) / (1 << 20));
     // The shadow technique's light-space structure first: it does not depend on the camera's buffers.
     shadows.build(ctx_, options);
 

@@ -75,26 +75,52 @@ std::string join(const std::vector<std::string_view>& items) {
   return s;
 }
 
+std::string quoted_text(std::string_view text) {
+  return shown(json(std::string(text)));
+}
+
+std::string printable_key(std::string_view key) {
+  const bool plain = key.size() <= 40 && std::none_of(key.begin(), key.end(), [](char c) {
+                       return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+                     });
+  return plain ? std::string(key) : quoted_text(key);
+}
+
 std::string join_path(const std::string& base, std::string_view key) {
-  return base.empty() ? std::string(key) : base + "." + std::string(key);
+  return base.empty() ? printable_key(key) : base + "." + printable_key(key);
 }
 
 void fail_json_value(const std::string& where, const std::string& path, std::string_view what) {
   fail("{}: '{}' {}", where, path, what);
 }
 
-glm::vec3 json_vec3(const json& value, const std::string& where, const std::string& path) {
+namespace {
+
+// Why `d` (a JSON number, so finite: nlohmann refuses overflowing text) cannot be a float, or nullptr.
+const char* float_problem(double d) {
+  if (!std::isfinite(d)) return "must be finite";
+  if (std::abs(d) > double(std::numeric_limits<float>::max()))
+    return "is out of float range (the magnitude must be at most 3.4e38)";
+  return nullptr;
+}
+
+}  // namespace
+
+glm::dvec3 json_dvec3(const json& value, const std::string& where, const std::string& path) {
   if (!value.is_array() || value.size() != 3 ||
       !std::all_of(value.begin(), value.end(), [](const json& v) { return v.is_number(); }))
     fail_json_value(where, path, fmt::format("must be an array of 3 numbers (got {})", shown(value)));
-  glm::vec3 v;
+  glm::dvec3 v;
   for (int c = 0; c < 3; ++c) {
-    const double d = value[c].get<double>();
-    if (!std::isfinite(float(d)))
-      fail_json_value(where, path, fmt::format("must be finite (got {})", shown(value)));
-    v[c] = float(d);
+    v[c] = value[c].get<double>();
+    if (const char* problem = float_problem(v[c]))
+      fail_json_value(where, path, fmt::format("{} (got {})", problem, shown(value)));
   }
   return v;
+}
+
+glm::vec3 json_vec3(const json& value, const std::string& where, const std::string& path) {
+  return glm::vec3(json_dvec3(value, where, path));
 }
 
 JsonObjectReader::JsonObjectReader(const json& value, std::string where, std::string path,
@@ -172,7 +198,8 @@ float JsonObjectReader::number(std::string_view key, std::optional<float> fallba
   const json& value = v ? *v : required(key);
   if (!value.is_number()) fail_key(key, fmt::format("must be a number (got {})", shown(value)));
   const double d = value.get<double>();
-  if (!std::isfinite(float(d))) fail_key(key, fmt::format("must be a finite float (got {})", shown(value)));
+  if (const char* problem = float_problem(d))
+    fail_key(key, fmt::format("{} (got {})", problem, shown(value)));
   return float(d);
 }
 
@@ -202,6 +229,10 @@ glm::vec3 JsonObjectReader::vec3(std::string_view key, std::optional<glm::vec3> 
   const json* v = get(key);
   if (!v && fallback) return *fallback;
   return json_vec3(v ? *v : required(key), where_, path(key));
+}
+
+glm::dvec3 JsonObjectReader::dvec3(std::string_view key) const {
+  return json_dvec3(required(key), where_, path(key));
 }
 
 glm::vec2 JsonObjectReader::vec2(std::string_view key, std::optional<glm::vec2> fallback) const {
@@ -236,8 +267,9 @@ std::vector<float> JsonObjectReader::numbers(std::string_view key,
   if (!value.is_array()) fail_key(key, fmt::format("must be an array of numbers (got {})", shown(value)));
   std::vector<float> out;
   for (const json& e : value) {
-    if (!e.is_number() || !std::isfinite(float(e.get<double>())))
-      fail_key(key, fmt::format("must be an array of finite numbers (got {})", shown(value)));
+    if (!e.is_number()) fail_key(key, fmt::format("must be an array of numbers (got {})", shown(value)));
+    if (const char* problem = float_problem(e.get<double>()))
+      fail_key(key, fmt::format("{} (got {})", problem, shown(value)));
     out.push_back(float(e.get<double>()));
   }
   return out;
