@@ -132,7 +132,9 @@ TEST(DistanceMapRefraction, CameraInsideGlassIsRefused) {
     renderer.render(light(), inside, o);
     ADD_FAILURE() << "a camera inside the ball was accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("the camera is inside the dielectric '" + mats[kGlass].name + "'"),
+    EXPECT_NE(std::string(e.what()).find("'camera.position' (0.1, 0.2, 0.3) (anchor-relative) is inside the "
+                                         "dielectric '" +
+                                         mats[kGlass].name + "'"),
               std::string::npos)
         << e.what();
   }

@@ -48,6 +48,7 @@
 #include "render/environment_map.h"
 #include "render/frame_renderer.h"
 #include "render/light_frame.h"
+#include "render/placement_error.h"
 #include "render/render_scene.h"
 #include "util/clock.h"
 #include "util/file_extension.h"
@@ -244,9 +245,9 @@ int run_render(const RenderArgs& args) {
   const auto placing_light = [&](auto&& frame) {
     try {
       return frame();
-    } catch (const LightPlacementError& e) {
-      const glm::dvec3 p = scene.light.position;
-      fail("{}: 'light.position' ({:g}, {:g}, {:g}) {}", scene.source, p.x, p.y, p.z, e.reason());
+    } catch (const PlacementError& e) {
+      const glm::dvec3 p = e.key() == "camera.position" ? scene.camera.position : scene.light.position;
+      fail("{}: '{}' ({:g}, {:g}, {:g}) {}", scene.source, e.key(), p.x, p.y, p.z, e.reason());
     }
   };
   const auto wait_start = Clock::now();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/placement_error.h"
 #include "util/error.h"
 #include "voxr_layout.h"
 
@@ -159,11 +160,11 @@ void DistanceMapRefraction::trace(const DeviceMesh& mesh, const cl::Buffer& vert
          kDistanceMapMinRes, kDistanceMapMaxRes);
   if (const std::optional<uint32_t> around = material_around(dielectric_corners_, dielectric_materials_,
                                                              uint32_t(material_names_.size()), camera.eye))
-    fail(
-        "--refraction distance-maps: the camera is inside the dielectric '{}'; the method traces paths "
-        "from outside the glass (its maps hold no surface beyond it): use voxel-multi, voxel-exact or "
-        "reference",
-        material_names_[*around]);
+    throw PlacementError("camera.position", camera.eye,
+                         fmt::format("is inside the dielectric '{}': --refraction distance-maps traces paths "
+                                     "from outside the glass (its maps hold no surface beyond it); use "
+                                     "voxel-multi, voxel-exact or reference",
+                                     material_names_[*around]));
   const uint32_t res = options.layer_res;
   const uint64_t face_texels = uint64_t(res) * res;
   cl::Buffer& layers =

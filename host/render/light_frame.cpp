@@ -147,11 +147,6 @@ bool casts_on(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
 
 }  // namespace
 
-LightPlacementError::LightPlacementError(const glm::vec3& position, std::string reason)
-    : Error(fmt::format("the point light at ({:.4g}, {:.4g}, {:.4g}) (anchor-relative) {}", position.x,
-                        position.y, position.z, reason)),
-      reason_(std::move(reason)) {}
-
 namespace {
 
 // What fit_light_frame knows before it looks at a triangle: the light space, the receivers' box, columns and
@@ -198,17 +193,17 @@ FitSetup setup_fit(const RenderLight& light, const Bounds& receivers, uint32_t r
     space.light = glm::vec3(light.position[0], light.position[1], light.position[2]);
     const glm::vec3 L = space.light;
     if (glm::all(glm::greaterThan(L, receivers.lo)) && glm::all(glm::lessThan(L, receivers.hi)))
-      throw LightPlacementError(L,
-                                "lies among the receivers: a transparent shadow map's frustum cannot see all "
-                                "around it; move it or use a directional light");
+      throw PlacementError("light.position", L,
+                           "lies among the receivers: a transparent shadow map's frustum cannot see all "
+                           "around it; move it or use a directional light");
     space.rows = frame_rows(glm::normalize(0.5f * (receivers.lo + receivers.hi) - L));
   }
   // The receivers' columns and depth range.
   for (const glm::vec3& c : s.rc) {
     if (space.projective && !(space.view_depth(c) > 0.0f))
-      throw LightPlacementError(space.light,
-                                "is beside or among the receivers: a frustum grid cannot hold them; move the "
-                                "light or use a directional light");
+      throw PlacementError("light.position", space.light,
+                           "is beside or among the receivers: a frustum grid cannot hold them; move the "
+                           "light or use a directional light");
     const glm::vec3 q = space(c);
     s.receiving.extend(glm::vec2(q));
     s.receivers_near = std::min(s.receivers_near, q.z);

@@ -23,6 +23,7 @@
 #include "core/grid_spec.h"
 #include "core/triangle_soup.h"
 #include "render/camera_frame.h"
+#include "render/placement_error.h"
 #include "util/error.h"
 #include "voxelize/device_mesh.h"
 #include "voxr_layout.h"
@@ -57,18 +58,6 @@ struct LightFrame {
 // the camera's view frustum between its near and far planes).
 Bounds visible_bounds(const Bounds& scene, const CameraFrame& camera);
 
-// A point light that no light frame can hold: among the receivers, or beside them. what() gives its
-// anchor-relative position; reason() is the rest of the sentence ("lies among the receivers: ..."), for
-// callers that know the scene to name the file and the position as the user wrote it (cmd_render).
-class LightPlacementError : public Error {
- public:
-  LightPlacementError(const glm::vec3& position, std::string reason);
-  const std::string& reason() const { return reason_; }
-
- private:
-  std::string reason_;
-};
-
 // Fits the light's grid: `resolution` columns along the longer side of its footprint, `resolution` slabs
 // (orthographic: as many cubic voxels as the depth needs, at most 4 x resolution). A point light gets a
 // frustum unless it is so far that parallel rays along its axis move no shadow by a tenth of a column
@@ -79,10 +68,10 @@ class LightPlacementError : public Error {
 // the triangles that can shadow a receiver (some corner of the receivers' box lies beyond the triangle's
 // plane, away from the light: a floor under everything casts nothing visible); the depth runs from the
 // nearest such caster in the footprint to the farthest receiver. Receivers outside the footprint are lit.
-// Throws LightPlacementError when a point light lies inside the receivers' bounds or beside them (a frustum
-// cannot see all around; use a directional light), voxr::Error when the resolution is out of range. The host
-// reference of DeviceLightFrame::fit, which frames render with (tests/device_light_frame_test.cpp compares
-// them).
+// Throws PlacementError ("light.position") when a point light lies inside the receivers' bounds or beside
+// them (a frustum cannot see all around; use a directional light), voxr::Error when the resolution is out of
+// range. The host reference of DeviceLightFrame::fit, which frames render with
+// (tests/device_light_frame_test.cpp compares them).
 LightFrame fit_light_frame(const RenderLight& light, const Bounds& receivers, const TriangleSoup& casters,
                            uint32_t resolution);
 
