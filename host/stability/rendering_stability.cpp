@@ -215,7 +215,7 @@ constexpr Bound kBounds[] = {
     {"total-internal-reflection", "distance-maps", Measure::kTirFound, 0.5, 0.5, kRuleTir},  // 0.9829, 0.9807
     // Documented: walls under a voxel thick cancel the voxel normals and hide the inner shell from image-space,
     // so (nearly) every event sequence differs: held at 0.9 or more.
-    {"nested-thin-shells", "voxel-multi", Measure::kEventMismatch, 1, 1, kDocShells, 0.553},  // 0.8292 (media by winding), 0.9978 before
+    {"nested-thin-shells", "voxel-multi", Measure::kEventMismatch, 1, 1, kDocShells, 0.3},  // 0.8292, 0.4499 (media by winding; 0.9913, 0.9978 by parity)
     {"nested-thin-shells", "voxel-two", Measure::kEventMismatch, 1, 1, kDocShells, 0.9},  // 1, 1
     {"nested-thin-shells", "image-space", Measure::kEventMismatch, 1, 1, kDocShells, 0.9},  // 1, 1
     {"nested-thin-shells", "distance-maps", Measure::kEventMismatch, 0.5, 0.5, kRuleEvents},  // 0.01592, 0.01249
