@@ -41,14 +41,8 @@ ShadowResult render_shadows(const std::string& json, ShadowMethod method, Raster
   RenderCase s(parse_scene(json, "light grid test scene", "."), kWidth, kHeight);
   FrameRenderer renderer(cl);
   renderer.set_scene(s.soup(), s.materials());
-  RenderOptions base;
-  base.shadows = ShadowMethod::kNone;
-  base.keep_samples = true;
-  renderer.prepare(base);
-  const RenderedFrame primary = renderer.render(s.light(), s.camera(), base);
   ReferenceFrame reference;
-  reference.shadows = exact_shadows(s.reference().scene(), primary.samples, {}, s.render_materials(),
-                                    s.light(), s.environment(), kWidth, kHeight);
+  reference.shadows = case_exact_shadows(renderer, s);
   RenderOptions o;
   o.shadows = method;
   o.mode = mode;

@@ -1,5 +1,7 @@
 #include "eval/reference_comparison.h"
 
+#include <utility>
+
 #include "metrics/shadow_receivers.h"
 #include "reference/reference_renderer.h"
 #include "render/shade_host.h"
@@ -18,6 +20,18 @@ ExactShadows exact_shadows(const ReferenceScene& scene, std::span<const SurfaceS
                 ? shade_samples(samples, s.transmittance, materials, light, width, height)
                 : shade_paths(samples, s.transmittance, paths, materials, light, environment, width, height);
   return s;
+}
+
+ExactShadows case_exact_shadows(FrameRenderer& renderer, RenderCase& c, RenderedFrame* primary) {
+  RenderOptions o;
+  o.shadows = ShadowMethod::kNone;
+  o.keep_samples = true;
+  renderer.prepare(o);
+  RenderedFrame frame = renderer.render(c.light(), c.camera(), o);
+  ExactShadows exact = exact_shadows(c.reference().scene(), frame.samples, {}, c.render_materials(),
+                                     c.light(), c.environment(), c.camera().width, c.camera().height);
+  if (primary) *primary = std::move(frame);
+  return exact;
 }
 
 const ImageRgba& ReferenceFrame::image() const {

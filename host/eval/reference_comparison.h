@@ -18,6 +18,7 @@
 #include <span>
 #include <vector>
 
+#include "eval/render_case.h"
 #include "metrics/image_metrics.h"
 #include "metrics/refraction_metrics.h"
 #include "reference/reference_refraction.h"
@@ -46,6 +47,13 @@ ExactShadows exact_shadows(const ReferenceScene& scene, std::span<const SurfaceS
                            std::span<const RefractionPath> paths,
                            const std::vector<RenderMaterial>& materials, const RenderLight& light,
                            const EnvironmentMap& environment, uint32_t width, uint32_t height);
+
+// The exact shadows of a render case's own frame: `renderer` (its scene set to c's soup and materials)
+// renders c's camera without shadows, keeping the samples, and exact_shadows traces the transmittance at them
+// (the samples shaded flat where a dielectric is seen). Used where shadows alone are measured (the stability
+// suite's shadow cases, tests); `primary`, when given, receives that frame. Throws what FrameRenderer::render
+// and exact_shadows throw.
+ExactShadows case_exact_shadows(FrameRenderer& renderer, RenderCase& c, RenderedFrame* primary = nullptr);
 
 // The exact frame a case's frames are measured against; either part may be absent.
 struct ReferenceFrame {

@@ -667,14 +667,9 @@ std::vector<StabilityRow> run_shadow_case(StabilityContext& ctx, const std::stri
   const Version v = version(ctx.full);
   FrameRenderer renderer(ctx.cl);
   renderer.set_scene(s.soup(), s.materials());
-  RenderOptions base;
-  base.shadows = ShadowMethod::kNone;
-  base.keep_samples = true;
-  renderer.prepare(base);
-  const RenderedFrame primary = renderer.render(s.light(), s.camera(), base);
+  RenderedFrame primary;
   ReferenceFrame reference;
-  reference.shadows = exact_shadows(s.reference().scene(), primary.samples, {}, s.render_materials(),
-                                    s.light(), s.environment(), v.width, v.height);
+  reference.shadows = case_exact_shadows(renderer, s, &primary);
   const std::vector<glm::vec3>& exact = reference.shadows->transmittance;
   const std::vector<uint8_t>& mask = reference.shadows->receivers;
   const uint64_t receivers = uint64_t(std::count(mask.begin(), mask.end(), uint8_t(1)));
