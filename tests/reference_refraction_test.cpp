@@ -466,18 +466,22 @@ TEST(RefractionMetrics, HandMadePaths) {
 TEST(RefractionMetrics, LostPathsAreCountedNotCompared) {
   const uint32_t env = VOXR_PATH_ENV, lost = VOXR_PATH_LOST;
   const ImageRgba image(2, 2, glm::vec4(0.5f));
-  // 0: the method lost the ray after one interface, the reference met one: not compared.
+  // 0: the method lost the ray after one interface, the reference met one: compared, differing.
   // 1: the reference lost it: not compared.  2: 1 against 2 interfaces: a mismatch.  3: equal.
   const std::vector<RefractionPath> a{path(1 | lost), path(2 | env), path(1 | env), path(2 | env)};
   const std::vector<RefractionPath> b{path(1 | env), path(3 | lost), path(2 | env), path(2 | env)};
   RefractionError e = refraction_error(image, a, image, b);
   EXPECT_EQ(e.refracted_pixels, 4u);
-  EXPECT_EQ(e.lost_pixels, 2u);
-  EXPECT_DOUBLE_EQ(e.event_mismatch_share, 0.5);
-  // Every refracted pixel lost by the method (the camera-in-glass picture): nothing compared.
+  EXPECT_EQ(e.lost_pixels, 1u);
+  EXPECT_EQ(e.method_lost_pixels, 1u);
+  EXPECT_DOUBLE_EQ(e.event_mismatch_share, 2.0 / 3.0);
+  // Every refracted pixel lost by the method (the camera-in-glass picture): every one differs, never 0 %.
   const std::vector<RefractionPath> all_lost(4, path(1 | lost)), reference(4, path(1 | env));
   e = refraction_error(image, all_lost, image, reference);
-  EXPECT_EQ(e.refracted_pixels, 4u);
+  EXPECT_EQ(e.method_lost_pixels, 4u);
+  EXPECT_DOUBLE_EQ(e.event_mismatch_share, 1.0);
+  // Every reference path lost: nothing compared, and the share says so (NaN), not 0 %.
+  e = refraction_error(image, reference, image, all_lost);
   EXPECT_EQ(e.lost_pixels, 4u);
   EXPECT_TRUE(std::isnan(e.event_mismatch_share)) << e.event_mismatch_share;
 }

@@ -183,7 +183,8 @@ TEST(RenderCli, CameraInsideGlassDistanceMapsRefuseAndLostPathsAreNotCompared) {
   EXPECT_EQ(c["refracted_pixels"].get<uint64_t>(), 80u * 60u) << "every pixel looks out through the glass";
   EXPECT_TRUE(c["event_mismatch_share"].is_number()) << c.dump();
 
-  // --dm-depth 1 ends every path at its second interface, lost: nothing to compare, and it says so.
+  // --dm-depth 1 ends every path at its second interface, lost: every event sequence differs (before: the
+  // comparison left them out and called nothing 0 %).
   const std::string sphere = std::string(VOXR_SOURCE_DIR) + "/data/scenes/glass-sphere.json";
   const fs::path lost_report = scratch() / "all-lost.json";
   const test::CliResult lost =
@@ -194,9 +195,10 @@ TEST(RenderCli, CameraInsideGlassDistanceMapsRefuseAndLostPathsAreNotCompared) {
   ASSERT_EQ(lost.code, 0) << lost.err;
   const nlohmann::json l = nlohmann::json::parse(test::slurp(lost_report))["compare_reference"]["refraction"];
   EXPECT_GT(l["refracted_pixels"].get<uint64_t>(), 100u);
-  EXPECT_EQ(l["lost_pixels"], l["refracted_pixels"]) << l.dump();
-  EXPECT_TRUE(l["event_mismatch_share"].is_null()) << l.dump();
-  EXPECT_NE(lost.out.find("event sequences not compared: all"), std::string::npos) << lost.out;
+  EXPECT_EQ(l["lost_pixels"].get<uint64_t>(), 0u) << l.dump();
+  EXPECT_EQ(l["method_lost_pixels"], l["refracted_pixels"]) << l.dump();
+  EXPECT_EQ(l["event_mismatch_share"].get<double>(), 1.0) << l.dump();
+  EXPECT_NE(lost.out.find("event sequence differs on 100.00%"), std::string::npos) << lost.out;
 }
 
 TEST(RenderCli, DistanceMapOptionsAreCheckedAndReported) {

@@ -368,7 +368,8 @@ int run_render(const RenderArgs& args) {
                                {"angle_pixels", e.angle_pixels},
                                {"refracted_pixels", e.refracted_pixels},
                                {"lost_pixels", e.lost_pixels},
-                               // null when no pixel could be compared (every one lost)
+                               {"method_lost_pixels", e.method_lost_pixels},
+                               // null when no pixel could be compared (the reference lost every one)
                                {"event_mismatch_share", std::isnan(e.event_mismatch_share)
                                                             ? nlohmann::json(nullptr)
                                                             : nlohmann::json(e.event_mismatch_share)},
@@ -480,14 +481,17 @@ int run_render(const RenderArgs& args) {
     if (compare.contains("refraction")) {
       const auto& c = compare["refraction"];
       const uint64_t refracted = c["refracted_pixels"].get<uint64_t>(),
-                     lost = c["lost_pixels"].get<uint64_t>();
+                     lost = c["lost_pixels"].get<uint64_t>(),
+                     method_lost = c["method_lost_pixels"].get<uint64_t>();
       const std::string events =
           c["event_mismatch_share"].is_null()
-              ? fmt::format("event sequences not compared: all {} refracted pixels lost", refracted)
+              ? fmt::format("event sequences not compared: the reference lost all {} refracted pixels",
+                            refracted)
               : fmt::format(
-                    "event sequence differs on {:.2f}% of {} compared pixels ({} refracted, {} lost: "
-                    "not compared)",
-                    100.0 * c["event_mismatch_share"].get<double>(), refracted - lost, refracted, lost);
+                    "event sequence differs on {:.2f}% of {} compared pixels ({} refracted, {} lost by the "
+                    "reference: not compared, {} lost by this method: differing)",
+                    100.0 * c["event_mismatch_share"].get<double>(), refracted - lost, refracted, lost,
+                    method_lost);
       fmt::print(
           "vs matched image RMSE {:.4f}, PSNR {} dB (exact shadows); exit direction error mean {} deg, 95th "
           "{} deg ({} pixels); {}; {} non-finite pixels\n",

@@ -53,8 +53,13 @@ RefractionError refraction_error(const ImageRgba& image, std::span<const Refract
     const uint32_t na = interfaces(a), nb = interfaces(b);
     if (na == 0 && nb == 0) continue;
     ++e.refracted_pixels;
-    if ((a.events | b.events) & VOXR_PATH_LOST) {
+    if (b.events & VOXR_PATH_LOST) {
       ++e.lost_pixels;
+      continue;
+    }
+    if (a.events & VOXR_PATH_LOST) {
+      ++e.method_lost_pixels;
+      ++mismatches;
       continue;
     }
     if (na != nb || (a.events & VOXR_PATH_TIR) != (b.events & VOXR_PATH_TIR)) ++mismatches;

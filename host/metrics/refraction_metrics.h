@@ -20,13 +20,15 @@ struct RefractionError {
   // is not finite.
   double angle_mean_deg = 0.0, angle_p95_deg = 0.0;
   uint64_t angle_pixels = 0;
-  // Pixels where either path met an interface; of them, those where either path is VOXR_PATH_LOST (cut
-  // short: the method lost the ray, or a limit ended it), whose event sequences cannot be compared; and the
-  // share of the others (refracted - lost) whose event sequence differs: the number of interfaces
-  // (events & VOXR_PATH_EVENTS_MASK) or whether there was a total internal reflection. The share is NaN when
-  // no pixel could be compared (never 0 % over nothing).
+  // Pixels where either path met an interface; of them, those whose reference path is VOXR_PATH_LOST (cut
+  // short by a limit: no event sequence to compare with, so not compared), those the method alone lost
+  // (compared, and counted as differing: a method that loses a path has not followed the reference's); and
+  // the share of the compared ones (refracted - lost) whose event sequence differs: the number of interfaces
+  // (events & VOXR_PATH_EVENTS_MASK), whether there was a total internal reflection, or the method's path
+  // lost. The share is NaN when no pixel could be compared (never 0 % over nothing).
   uint64_t refracted_pixels = 0;
-  uint64_t lost_pixels = 0;
+  uint64_t lost_pixels = 0;         // the reference's path lost: not compared
+  uint64_t method_lost_pixels = 0;  // the method's path lost where the reference's is not: differing
   double event_mismatch_share = 0.0;
   uint64_t nonfinite_pixels = 0;  // pixels of `image` with a NaN or infinite channel (must be 0)
 };

@@ -864,7 +864,9 @@ std::vector<StabilityRow> run_refraction_case(StabilityContext& ctx, const std::
     rows.push_back(measured_row(
         name, method, "event mismatch share of refracted pixels", Measure::kEventMismatch,
         e.event_mismatch_share, ctx.full,
-        fmt::format("{} refracted pixels, {} lost (not compared)", e.refracted_pixels, e.lost_pixels)));
+        fmt::format(
+            "{} refracted pixels, {} lost by the reference (not compared), {} by the method (differing)",
+            e.refracted_pixels, e.lost_pixels, e.method_lost_pixels)));
     rows.push_back(row(name, method, "non-finite pixels", double(e.nonfinite_pixels), 0.0, false,
                        "image NaN or infinite", "physics: radiance is finite"));
     if (tir) {
