@@ -80,7 +80,8 @@ TEST(MediaStack, LeavingAMaterialNotEnteredEntersIt) {
   voxr_media_cross(&m, kGlass, 1);
   EXPECT_TRUE(voxr_media_enters(&m, kWater, 1.0f));
   EXPECT_FALSE(voxr_media_enters(&m, kGlass, 1.0f));
-  EXPECT_TRUE(voxr_media_enters(&m, kGlass, 0.0f));  // edge-on (a cancelled normal): parity says enter
+  EXPECT_FALSE(voxr_media_enters(&m, kGlass, 0.0f));  // edge-on (a cancelled normal) inside: parity leaves
+  EXPECT_FALSE(voxr_media_enters(&m, kGlass, NAN));
 }
 
 TEST(MediaStack, AFullStackOverflowsOnlyForANewEntry) {

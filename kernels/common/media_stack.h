@@ -15,8 +15,9 @@
  *   - Leaving m (the innermost entry of m): count > 1: count - 1, n2 = n1; the last of the innermost entry:
  *     the entry goes, n2 is the medium below (air at the bottom); the last of an outer entry (overlapping
  *     solids of different materials): the entry goes, n2 = n1 (the ray stays in the innermost medium).
- *   - Fallback: a surface "left" of a material the path is not inside (an open or inside-out mesh, a
- *     surface met edge-on by a voxel normal that cancels) is entered, as the parity rule did.
+ *   - Fallback: a surface "left" of a material the path is not inside (an open or inside-out mesh) is
+ *     entered, as the parity rule did; one met edge-on (facing 0 or NaN: a voxel normal that cancels) is
+ *     left when the path is inside its material and entered when not, as parity did.
  * Shadow rays (VoxrSolidLedger, one per dielectric material met): each crossing is +1 (entered along the
  * ray) or -1 (left); the ray runs to infinity, where it is outside everything, so the depth at the
  * receiver is minus the sum over the whole ray, and a segment is inside where its depth is > 0. A material
@@ -64,10 +65,11 @@ inline int voxr_media_find(const VoxrMedia* m, uint mat) {
 }
 
 /* Whether a surface of material `mat` whose winding normal makes `facing` = dot(ray direction, normal) with
- * the ray is entered (1) or left (0): left when the path is inside `mat` and the normal points along the
- * ray; entered otherwise (facing < 0, or the fallback: not inside, or facing 0). */
+ * the ray is entered (1) or left (0): entered when the path is not inside `mat` (the fallback, whatever the
+ * winding) or the normal faces the ray (facing < 0); left otherwise. A surface met edge-on (facing 0, or NaN
+ * from a cancelled voxel normal) thus takes parity's choice: left when inside, entered when not. */
 inline int voxr_media_enters(const VoxrMedia* m, uint mat, float facing) {
-  return !(facing > 0.0f) || voxr_media_find(m, mat) < 0;
+  return voxr_media_find(m, mat) < 0 || facing < 0.0f;
 }
 
 /* Whether entering `mat` needs an entry the stack has no room for (the caller ends the path). */
