@@ -82,8 +82,8 @@ TEST(DistanceMapRefraction, ReferencePointIsTheDielectricsCentre) {
 }
 
 // Issue 20, kind 6: the camera-inside check. A glass box (material 1) with a glass box of another glass
-// (material 2) inside it and an opaque box (material 0) beside them: a point is inside the innermost
-// dielectric that holds it (the first odd material), in none outside or in the opaque box.
+// (material 2) inside it and an opaque box (material 0) beside them: a point is inside the dielectric of the
+// lowest material id that holds it, in none outside or in the opaque box.
 TEST(DistanceMapRefraction, DielectricAroundAPointByWinding) {
   std::vector<Material> mats(3);
   mats[0].name = "stone";

@@ -266,7 +266,6 @@ TEST(MediaStack, NestedSameGlassRendersAsTheOuterSphereInEveryMethod) {
     const ImageRgba b = render(single, m.options, "single-" + m.name);
     const double e = rmse(a, b), bound = m.exact ? 1e-3 : rmse(b, truth);
     EXPECT_LE(e, bound) << m.name;
-    EXPECT_LT(bound, 0.04) << m.name;  // a noise floor, not the fault's size
     std::cout << "[ nested same glass vs single ] " << m.name << " RMSE " << e << " (bound " << bound
               << ")\n";
   }
@@ -275,12 +274,16 @@ TEST(MediaStack, NestedSameGlassRendersAsTheOuterSphereInEveryMethod) {
 TEST(MediaStack, NestedDifferentGlassStillBendsAtTheInnerSurface) {
   const fs::path nested = write_scene("nested-dense.json", 1.8, true);
   const fs::path single = write_scene("single-outer-2.json", 1.5, false);
+  const ImageRgba truth = render(nested, "--refraction reference --shadows reference", "dense-truth");
   for (const Method& m : kMethods) {
     if (m.name == "voxel-two") continue;  // by design refracts at its front object's two surfaces only
     const ImageRgba a = render(nested, m.options, "dense-" + m.name);
     const ImageRgba b = render(single, m.options, "single2-" + m.name);
     const double e = rmse(a, b);
     EXPECT_GE(e, 0.02) << m.name;
+    // Not just different: voxel-exact is the matched reference's picture (issue 19's requirement, RMSE
+    // <= 0.01), so the inner surface bends where the reference bends it.
+    if (m.name == "voxel-exact") EXPECT_LE(rmse(a, truth), 0.01) << m.name;
     std::cout << "[ nested 1.8 glass vs single ] " << m.name << " RMSE " << e << "\n";
   }
 }

@@ -247,7 +247,7 @@ int run_render(const RenderArgs& args) {
       return frame();
     } catch (const PlacementError& e) {
       const glm::dvec3 p = e.key() == "camera.position" ? scene.camera.position : scene.light.position;
-      fail("{}: '{}' ({:g}, {:g}, {:g}) {}", scene.source, e.key(), p.x, p.y, p.z, e.reason());
+      fail("{}: '{}' ({}, {}, {}) {}", scene.source, e.key(), p.x, p.y, p.z, e.reason());
     }
   };
   const auto wait_start = Clock::now();

@@ -4,7 +4,8 @@
 // files, counts a header promises but the body does not hold, indices out of range. Polygons stay polygons
 // (polygon_triangulation.h triangulates them); faces of fewer than 3 corners are kept for the caller to
 // count. Formats: ASCII OFF (Princeton shape benchmark; colour and normal columns, comments), Wavefront
-// OBJ (v, f with v/vt/vn forms and negative indices; other statements ignored), PLY 1.0 (ASCII and both
+// OBJ (v, f with v/vt/vn forms and negative indices; `usemtl` names give material ids in the order faces
+// first use them, none when there is only one; other statements ignored), PLY 1.0 (ASCII and both
 // binary byte orders, every scalar type, any property order), STL (ASCII and binary; identical corners are
 // merged so closed meshes stay closed by index).
 #pragma once

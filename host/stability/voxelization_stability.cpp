@@ -327,7 +327,7 @@ std::vector<StabilityRow> run_subvoxel(StabilityContext& ctx) {
     if (!conservative)
       r = documented(r, 0.0, 0.25,
                      "centre sampling keeps a sub-voxel feature only where it covers a column centre "
-                     "(Eisemann & Decoret 2006 §3): 1 in 40 measured");
+                     "(Eisemann & Decoret 2006 §3): 0 of 40 kept in the small version, 1 in the full");
     r.picture = write_difference_picture(result, exact, ctx.picture_dir, picture_name(name, method));
     rows.push_back(r);
   }
