@@ -15,11 +15,13 @@
  * environment layer alone is searched to the scene's sphere; nothing found there is the environment, nothing
  * found inside a medium is VOXR_PATH_LOST (the maps miss a surface). The searches read each map's distances
  * alone (dm_distances: one float per texel, -1 where empty, the refractor layers then the environment layer),
- * the samples only at hits. dm_distances: distances[first + i] from samples[i]. shape: one work item per
- * texel. distance_maps: the tracing. shape: one work item per pixel. in:  camera, primary samples (width *
- * height), refractor layers (layers * 6 * layer_res^2 SurfaceSample), environment layer (6 * layer_res^2),
- * their distances ((layers + 1) * 6 * layer_res^2), materials, the mesh the layers were rasterized from
- * (positions float4, triangles uint4) out: ends[pixel] (SurfaceSample), paths[pixel] (RefractionPath) */
+ * the samples only at hits.
+ *   dm_distances: distances[first + i] from samples[i]. shape: one work item per texel.
+ *   distance_maps: the tracing. shape: one work item per pixel.
+ * in:  camera, primary samples (width * height), refractor layers (layers * 6 * layer_res^2 SurfaceSample),
+ *      environment layer (6 * layer_res^2), their distances ((layers + 1) * 6 * layer_res^2), materials,
+ *      the mesh the layers were rasterized from (positions float4, triangles uint4)
+ * out: ends[pixel] (SurfaceSample), paths[pixel] (RefractionPath) */
 #include "refraction_path.h"
 
 #ifndef PATH_GROUP
