@@ -13,6 +13,8 @@
 #include <cctype>
 #include <cmath>
 #include <exception>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <vector>
 
@@ -85,8 +87,18 @@ ImageRgba decode_png(const std::string& name) {
   png.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_file(&png, name.c_str()))
     fail("{}: cannot read the image: {}", name, one_line(png.message));
+  // Deflate expands at most 1032-fold, and a row holds at least a filter byte and 1 bit per pixel: a header
+  // claiming more than the file can hold is refused before its buffer is allocated (20000 x 20000 in 58 bytes
+  // allocated 1.6 GB).
+  std::error_code ec;
+  const uint64_t file_bytes = fs::file_size(name, ec);
+  if (ec || uint64_t(png.height) * (1 + (uint64_t(png.width) + 7) / 8) > 1032 * file_bytes) {
+    png_image_free(&png);
+    fail("{}: cannot read the image: the file is too short for its {}x{} pixels", name, png.width,
+         png.height);
+  }
   png.format = PNG_FORMAT_RGBA;  // grey and palette images expanded, no alpha -> opaque, 16 bits -> 8
-  std::vector<uint8_t> values(PNG_IMAGE_SIZE(png));
+  std::vector<uint8_t> values(size_t(png.width) * png.height * 4);
   if (!png_image_finish_read(&png, nullptr, values.data(), 0, nullptr))
     fail("{}: cannot read the image: {}", name, one_line(png.message));
   ImageRgba image(png.width, png.height);
@@ -98,7 +110,42 @@ ImageRgba decode_png(const std::string& name) {
   return image;
 }
 
+// OpenEXR allocates each header attribute's declared size before reading it (fuzz_env_image found a 1.3 GB
+// attribute in a 200-byte file): the headers' attributes are walked first, and one larger than the rest of
+// the file is refused. Layout: magic, version (bit 12: multi-part, each header ends in a 0 byte, the list in
+// another), then per attribute a name, a type name (0-terminated) and a 4-byte little-endian size.
+void check_exr_attribute_sizes(const std::string& name) {
+  std::ifstream in(name, std::ios::binary);
+  std::vector<char> bytes(std::istreambuf_iterator<char>(in), {});
+  if (bytes.size() < 8) return;  // OpenEXR says what is wrong
+  const bool multi_part = uint8_t(bytes[5]) & 0x10;
+  size_t pos = 8;
+  const auto text = [&] {  // a 0-terminated string at pos; false at the end of the file
+    const auto end = std::find(bytes.begin() + std::ptrdiff_t(pos), bytes.end(), '\0');
+    if (end == bytes.end()) return false;
+    pos = size_t(end - bytes.begin()) + 1;
+    return true;
+  };
+  while (pos < bytes.size()) {
+    if (bytes[pos] == '\0') {  // the end of a header
+      ++pos;
+      if (!multi_part || pos >= bytes.size() || bytes[pos] == '\0') return;
+      continue;
+    }
+    const size_t attribute = pos;
+    if (!text() || !text() || pos + 4 > bytes.size()) return;
+    uint32_t size = 0;
+    for (int i = 3; i >= 0; --i) size = size << 8 | uint8_t(bytes[pos + size_t(i)]);
+    pos += 4;
+    if (size > bytes.size() - pos)
+      fail("{}: cannot read the image: header attribute '{}' claims {} bytes, {} are left in the file", name,
+           one_line(std::string(bytes.data() + attribute)), size, bytes.size() - pos);
+    pos += size;
+  }
+}
+
 ImageRgba decode_exr(const std::string& name) {
+  check_exr_attribute_sizes(name);
   Imf::InputFile file(name.c_str());
   const Imath::Box2i window = file.header().dataWindow();
   const int64_t width = int64_t(window.max.x) - window.min.x + 1;
@@ -123,11 +170,61 @@ ImageRgba decode_exr(const std::string& name) {
   return image;
 }
 
+// A Radiance file in memory for stb_image's callbacks; `past_end` records a read at the end of the file
+// (stb_image decodes the bytes a truncated file lacks as zeros).
+struct HdrSource {
+  std::vector<char> bytes;
+  size_t pos = 0;
+  bool past_end = false;
+
+  static int read(void* user, char* data, int size) {
+    HdrSource& s = *static_cast<HdrSource*>(user);
+    const size_t n = std::min(size_t(std::max(size, 0)), s.bytes.size() - s.pos);
+    if (n == 0 && size > 0) s.past_end = true;
+    std::copy_n(s.bytes.data() + s.pos, n, data);
+    s.pos += n;
+    return int(n);
+  }
+  static void skip(void* user, int n) {
+    HdrSource& s = *static_cast<HdrSource*>(user);
+    s.pos = size_t(std::clamp<int64_t>(int64_t(s.pos) + n, 0, int64_t(s.bytes.size())));
+  }
+  static int eof(void* user) {
+    const HdrSource& s = *static_cast<const HdrSource*>(user);
+    return s.pos >= s.bytes.size();
+  }
+};
+
 ImageRgba decode_hdr(const std::string& name) {
+  HdrSource source;
+  {
+    std::ifstream in(name, std::ios::binary);
+    source.bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (in.bad()) fail("{}: cannot read the image: read error", name);
+  }
+  const stbi_io_callbacks io{&HdrSource::read, &HdrSource::skip, &HdrSource::eof};
+  // stbi_loadf would decode any format stb_image knows (JPEG, BMP, ...) and convert it from gamma 2.2.
+  if (!stbi_is_hdr_from_callbacks(&io, &source))
+    fail("{}: cannot read the image: not a Radiance HDR file", name);
+  // A scanline takes 4 bytes a pixel, or for widths 8 to 32767 at least its 4-byte run-length header and one
+  // 2-byte run of up to 127 pixels per channel: a header claiming more than the file holds is refused before
+  // stb_image allocates its pixels (60 bytes claiming 7 x 16 M allocated 1.8 GB).
   int width = 0, height = 0, channels = 0;
-  std::unique_ptr<float, void (*)(void*)> values(stbi_loadf(name.c_str(), &width, &height, &channels, 4),
-                                                 stbi_image_free);
+  source.pos = 0;
+  if (!stbi_info_from_callbacks(&io, &source, &width, &height, &channels))
+    fail("{}: cannot read the image: {}", name, one_line(stbi_failure_reason()));
+  // stb_image accepts a header without a width or height ("+X " followed by no number) as a 0-pixel image.
+  if (width <= 0 || height <= 0) fail("{}: not a 2-D image", name);
+  const uint64_t line_bytes =
+      width >= 8 && width < 32768 ? 4 + 8 * ((uint64_t(width) + 126) / 127) : 4 * uint64_t(width);
+  if (line_bytes * uint64_t(height) > source.bytes.size())
+    fail("{}: cannot read the image: the file is too short for its {}x{} pixels", name, width, height);
+  source.pos = 0;
+  source.past_end = false;
+  std::unique_ptr<float, void (*)(void*)> values(
+      stbi_loadf_from_callbacks(&io, &source, &width, &height, &channels, 4), stbi_image_free);
   if (!values) fail("{}: cannot read the image: {}", name, one_line(stbi_failure_reason()));
+  if (source.past_end) fail("{}: cannot read the image: the file ends before its last pixel", name);
   ImageRgba image{uint32_t(width), uint32_t(height)};
   std::copy_n(values.get(), size_t(width) * height * 4, &image.pixels[0].x);
   return image;
