@@ -16,6 +16,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "io/atomic_file.h"
@@ -116,31 +117,28 @@ ImageRgba decode_png(const std::string& name) {
 // another), then per attribute a name, a type name (0-terminated) and a 4-byte little-endian size.
 void check_exr_attribute_sizes(const std::string& name) {
   std::ifstream in(name, std::ios::binary);
-  std::vector<char> bytes(std::istreambuf_iterator<char>(in), {});
-  if (bytes.size() < 8) return;  // OpenEXR says what is wrong
-  const bool multi_part = uint8_t(bytes[5]) & 0x10;
-  size_t pos = 8;
-  const auto text = [&] {  // a 0-terminated string at pos; false at the end of the file
-    const auto end = std::find(bytes.begin() + std::ptrdiff_t(pos), bytes.end(), '\0');
-    if (end == bytes.end()) return false;
-    pos = size_t(end - bytes.begin()) + 1;
-    return true;
-  };
-  while (pos < bytes.size()) {
-    if (bytes[pos] == '\0') {  // the end of a header
-      ++pos;
-      if (!multi_part || pos >= bytes.size() || bytes[pos] == '\0') return;
+  std::error_code ec;
+  const uint64_t file_bytes = fs::file_size(name, ec);
+  char start[8];
+  if (ec || !in.read(start, 8)) return;  // OpenEXR says what is wrong
+  const bool multi_part = uint8_t(start[5]) & 0x10;
+  std::string attribute, type;
+  while (in) {
+    if (in.peek() == 0) {  // the end of a header
+      in.get();
+      if (!multi_part || in.peek() == 0 || in.peek() == EOF) return;
       continue;
     }
-    const size_t attribute = pos;
-    if (!text() || !text() || pos + 4 > bytes.size()) return;
+    char size_bytes[4];
+    if (!std::getline(in, attribute, '\0') || !std::getline(in, type, '\0') || !in.read(size_bytes, 4))
+      return;
     uint32_t size = 0;
-    for (int i = 3; i >= 0; --i) size = size << 8 | uint8_t(bytes[pos + size_t(i)]);
-    pos += 4;
-    if (size > bytes.size() - pos)
+    for (int i = 3; i >= 0; --i) size = size << 8 | uint8_t(size_bytes[i]);
+    const uint64_t left = file_bytes - uint64_t(in.tellg());
+    if (size > left)
       fail("{}: cannot read the image: header attribute '{}' claims {} bytes, {} are left in the file", name,
-           one_line(std::string(bytes.data() + attribute)), size, bytes.size() - pos);
-    pos += size;
+           one_line(attribute), size, left);
+    in.seekg(size, std::ios::cur);
   }
 }
 
@@ -151,20 +149,33 @@ ImageRgba decode_exr(const std::string& name) {
   const int64_t width = int64_t(window.max.x) - window.min.x + 1;
   const int64_t height = int64_t(window.max.y) - window.min.y + 1;
   if (width <= 0 || height <= 0 || width * height > (int64_t(1) << 28)) fail("{}: not a 2-D image", name);
-  ImageRgba image(uint32_t(width), uint32_t(height), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-  // Slices are addressed by the data window's coordinates: shift the base to its origin.
-  char* base = reinterpret_cast<char*>(image.pixels.data()) -
-               (int64_t(window.min.x) + int64_t(window.min.y) * width) * int64_t(sizeof(glm::vec4));
-  const size_t x_stride = sizeof(glm::vec4), y_stride = sizeof(glm::vec4) * size_t(width);
   const Imf::ChannelList& channels = file.header().channels();
   const bool grey = !channels.findChannel("R") && channels.findChannel("Y");
-  Imf::FrameBuffer frame;
-  const char* names[4] = {grey ? "Y" : "R", "G", "B", "A"};
-  for (int c = 0; c < (grey ? 1 : 3); ++c)
-    frame.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), x_stride, y_stride, 1, 1, 0.0));
-  frame.insert("A", Imf::Slice(Imf::FLOAT, base + 3 * sizeof(float), x_stride, y_stride, 1, 1, 1.0));
-  file.setFrameBuffer(frame);
-  file.readPixels(window.min.y, window.max.y);
+  const auto read = [&](char* base, size_t x_stride, size_t y_stride) {
+    Imf::FrameBuffer frame;
+    const char* names[4] = {grey ? "Y" : "R", "G", "B", "A"};
+    for (int c = 0; c < (grey ? 1 : 3); ++c)
+      frame.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), x_stride, y_stride, 1, 1, 0.0));
+    frame.insert("A", Imf::Slice(Imf::FLOAT, base + 3 * sizeof(float), x_stride, y_stride, 1, 1, 1.0));
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+  };
+  // A header can claim far more pixels than the file holds (fuzz_env_image found 7.6 M x 20, 2.4 GB as RGBA
+  // floats, in 255 bytes). When the image would be over 64 times the file, its pixels are first decoded into
+  // one row (y stride 0), so missing data is found before the image is allocated; real files are a few times
+  // smaller than their image, and those much smaller decode fast. (OpenEXR refuses rows of the file over
+  // about 16 MB, so this row is at most 128 MiB.)
+  std::error_code ec;
+  if (uint64_t(width * height) * sizeof(glm::vec4) > 64 * fs::file_size(name, ec)) {
+    std::vector<glm::vec4> row(static_cast<size_t>(width));
+    read(reinterpret_cast<char*>(row.data()) - int64_t(window.min.x) * int64_t(sizeof(glm::vec4)),
+         sizeof(glm::vec4), 0);
+  }
+  ImageRgba image(uint32_t(width), uint32_t(height), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  // Slices are addressed by the data window's coordinates: shift the base to its origin.
+  read(reinterpret_cast<char*>(image.pixels.data()) -
+           (int64_t(window.min.x) + int64_t(window.min.y) * width) * int64_t(sizeof(glm::vec4)),
+       sizeof(glm::vec4), sizeof(glm::vec4) * size_t(width));
   if (grey)
     for (glm::vec4& p : image.pixels) p.y = p.z = p.x;
   return image;
