@@ -17,6 +17,8 @@
 #include <iterator>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "io/atomic_file.h"
@@ -111,34 +113,80 @@ ImageRgba decode_png(const std::string& name) {
   return image;
 }
 
-// OpenEXR allocates each header attribute's declared size before reading it (fuzz_env_image found a 1.3 GB
-// attribute in a 200-byte file): the headers' attributes are walked first, and one larger than the rest of
-// the file is refused. Layout: magic, version (bit 12: multi-part, each header ends in a 0 byte, the list in
-// another), then per attribute a name, a type name (0-terminated) and a 4-byte little-endian size.
+// OpenEXR allocates the declared size of a header attribute it reads as bytes (strings, unknown types) and a
+// preview image's declared pixels before reading them (fuzz_env_image found 0.8-1.9 GB in 200-byte files):
+// the headers are walked as OpenEXR reads them, and such an attribute larger than the rest of the file is
+// refused first. Layout: magic, version (bit 12: multi-part, each header ends in a 0 byte, the list in
+// another), then per attribute a name, a type name (0-terminated), a 4-byte little-endian size and the value:
+// a channel list up to an empty name, fixed-size types by their layout, everything else by the size.
 void check_exr_attribute_sizes(const std::string& name) {
+  static const std::pair<std::string_view, int> kFixed[] = {{"box2i", 16},
+                                                            {"box2f", 16},
+                                                            {"v2i", 8},
+                                                            {"v2f", 8},
+                                                            {"v2d", 16},
+                                                            {"v3i", 12},
+                                                            {"v3f", 12},
+                                                            {"v3d", 24},
+                                                            {"float", 4},
+                                                            {"double", 8},
+                                                            {"int", 4},
+                                                            {"compression", 1},
+                                                            {"lineOrder", 1},
+                                                            {"envmap", 1},
+                                                            {"deepImageState", 1},
+                                                            {"chromaticities", 32},
+                                                            {"keycode", 28},
+                                                            {"timecode", 8},
+                                                            {"rational", 8},
+                                                            {"m33f", 36},
+                                                            {"m44f", 64},
+                                                            {"m33d", 72},
+                                                            {"m44d", 128},
+                                                            {"tiledesc", 9}};
   std::ifstream in(name, std::ios::binary);
   std::error_code ec;
   const uint64_t file_bytes = fs::file_size(name, ec);
   char start[8];
   if (ec || !in.read(start, 8)) return;  // OpenEXR says what is wrong
   const bool multi_part = uint8_t(start[5]) & 0x10;
-  std::string attribute, type;
+  const auto u32 = [&](uint32_t& v) {
+    char b[4];
+    if (!in.read(b, 4)) return false;
+    v = 0;
+    for (int i = 3; i >= 0; --i) v = v << 8 | uint8_t(b[i]);
+    return true;
+  };
+  const auto refuse_beyond_end = [&](const std::string& attribute, uint64_t bytes) {
+    const uint64_t left = file_bytes - uint64_t(in.tellg());
+    if (bytes > left)
+      fail("{}: cannot read the image: header attribute '{}' claims {} bytes, {} are left in the file", name,
+           one_line(attribute), bytes, left);
+  };
+  std::string attribute, type, channel;
   while (in) {
     if (in.peek() == 0) {  // the end of a header
       in.get();
       if (!multi_part || in.peek() == 0 || in.peek() == EOF) return;
       continue;
     }
-    char size_bytes[4];
-    if (!std::getline(in, attribute, '\0') || !std::getline(in, type, '\0') || !in.read(size_bytes, 4))
-      return;
     uint32_t size = 0;
-    for (int i = 3; i >= 0; --i) size = size << 8 | uint8_t(size_bytes[i]);
-    const uint64_t left = file_bytes - uint64_t(in.tellg());
-    if (size > left)
-      fail("{}: cannot read the image: header attribute '{}' claims {} bytes, {} are left in the file", name,
-           one_line(attribute), size, left);
-    in.seekg(size, std::ios::cur);
+    if (!std::getline(in, attribute, '\0') || !std::getline(in, type, '\0') || !u32(size)) return;
+    const auto fixed =
+        std::find_if(std::begin(kFixed), std::end(kFixed), [&](const auto& f) { return f.first == type; });
+    if (type == "chlist") {
+      while (std::getline(in, channel, '\0') && !channel.empty()) in.seekg(16, std::ios::cur);
+    } else if (fixed != std::end(kFixed)) {
+      in.seekg(fixed->second, std::ios::cur);
+    } else if (type == "preview") {
+      uint32_t width = 0, height = 0;
+      if (!u32(width) || !u32(height)) return;
+      refuse_beyond_end(attribute, uint64_t(width) * height * 4);
+      in.seekg(std::streamoff(uint64_t(width) * height * 4), std::ios::cur);
+    } else {
+      refuse_beyond_end(attribute, size);
+      in.seekg(size, std::ios::cur);
+    }
   }
 }
 
