@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Fuzz every mesh reader with libFuzzer (ASan + UBSan): OFF, OBJ, PLY, STL with voxr's own readers, glTF and
 # GLB through Assimp; each input is read and then triangulated, as load_mesh does (fuzz/fuzz_target.h). And
-# the scene reader: JSON text -> Scene -> world triangles (fuzz/fuzz_scene.cpp).
+# the scene reader: JSON text -> Scene -> world triangles (fuzz/fuzz_scene.cpp), and the environment image a
+# scene names: bytes -> .png/.exr/.hdr file -> make_environment_map (fuzz/fuzz_env_image.cpp).
 # usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]      (default: 60 seconds; all targets)
 #   targets: off obj ply stl assimp_gltf assimp_glb scene env_image
 #   env: VOXR_FUZZ_BUILD (build tree, default build-fuzz), VOXR_FUZZ_PARALLEL (targets at once, default 1),

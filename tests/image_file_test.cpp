@@ -187,6 +187,10 @@ TEST(ImageFile, RefusesHeadersThatClaimMoreThanTheFileHolds) {
   // 2 x 2 pixels, the last one's 4 bytes missing: read as black before.
   std::tie(e, f) = error_for("cut.hdr", radiance + "-Y 2 +X 2\n" + std::string(12, '\x80'));
   EXPECT_EQ(e, f + "cannot read the image: the file ends before its last pixel");
+  // A run of length 0 in a run-length scanline: stb_image looped forever (fuzz_env_image).
+  std::tie(e, f) =
+      error_for("zero_run.hdr", radiance + "-Y 1 +X 8\n" + std::string("\x02\x02\x00\x08\x00", 5));
+  EXPECT_EQ(e, f + "cannot read the image: a run of length 0 in scanline 0");
   // Another format named .hdr: stb_image decoded it as 8-bit gamma 2.2.
   std::tie(e, f) = error_for("png.hdr", png_file(1, 1, "x"));
   EXPECT_EQ(e, f + "cannot read the image: not a Radiance HDR file");

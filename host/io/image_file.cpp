@@ -278,6 +278,23 @@ ImageRgba decode_hdr(const std::string& name) {
       width >= 8 && width < 32768 ? 4 + 8 * ((uint64_t(width) + 126) / 127) : 4 * uint64_t(width);
   if (line_bytes * uint64_t(height) > source.bytes.size())
     fail("{}: cannot read the image: the file is too short for its {}x{} pixels", name, width, height);
+  // stb_image's run-length decoder loops forever on a run of length 0 (fuzz_env_image: a 70-byte file): the
+  // scanlines are walked first as it decodes them (4 header bytes 2 2 width, then per channel runs: a count
+  // over 128 repeats the next byte count - 128 times, else count bytes follow), and a 0 run is refused.
+  const size_t header_end = std::string_view(source.bytes.data(), source.bytes.size()).find("\n\n");
+  size_t pos = std::string_view(source.bytes.data(), source.bytes.size()).find('\n', header_end + 2) + 1;
+  const auto byte = [&](size_t i) { return uint8_t(source.bytes[i]); };
+  for (int y = 0; width >= 8 && width < 32768 && y < height && pos + 4 <= source.bytes.size(); ++y) {
+    if (byte(pos) != 2 || byte(pos + 1) != 2 || (byte(pos + 2) & 0x80)) break;  // stb_image reads it flat
+    pos += 4;
+    for (int c = 0; c < 4; ++c)
+      for (int x = 0; x < width && pos < source.bytes.size();) {
+        const int count = byte(pos++);
+        if (count == 0) fail("{}: cannot read the image: a run of length 0 in scanline {}", name, y);
+        x += count > 128 ? count - 128 : count;
+        pos += count > 128 ? 1 : size_t(count);
+      }
+  }
   source.pos = 0;
   source.past_end = false;
   std::unique_ptr<float, void (*)(void*)> values(
