@@ -191,6 +191,10 @@ TEST(ImageFile, RefusesHeadersThatClaimMoreThanTheFileHolds) {
   std::tie(e, f) =
       error_for("zero_run.hdr", radiance + "-Y 1 +X 8\n" + std::string("\x02\x02\x00\x08\x00", 5));
   EXPECT_EQ(e, f + "cannot read the image: a run of length 0 in scanline 0");
+  // The file ending inside a run-length scanline: stb_image read a 0 run past the end, and looped.
+  std::tie(e, f) =
+      error_for("cut_run.hdr", radiance + "-Y 1 +X 8\n" + std::string("\x02\x02\x00\x08\x88\x64", 6));
+  EXPECT_EQ(e, f + "cannot read the image: the file ends before its last pixel");
   // Another format named .hdr: stb_image decoded it as 8-bit gamma 2.2.
   std::tie(e, f) = error_for("png.hdr", png_file(1, 1, "x"));
   EXPECT_EQ(e, f + "cannot read the image: not a Radiance HDR file");

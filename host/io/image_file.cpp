@@ -280,7 +280,8 @@ ImageRgba decode_hdr(const std::string& name) {
     fail("{}: cannot read the image: the file is too short for its {}x{} pixels", name, width, height);
   // stb_image's run-length decoder loops forever on a run of length 0 (fuzz_env_image: a 70-byte file): the
   // scanlines are walked first as it decodes them (4 header bytes 2 2 width, then per channel runs: a count
-  // over 128 repeats the next byte count - 128 times, else count bytes follow), and a 0 run is refused.
+  // over 128 repeats the next byte count - 128 times, else count bytes follow), and a 0 run or a scanline the
+  // file ends in is refused.
   const size_t header_end = std::string_view(source.bytes.data(), source.bytes.size()).find("\n\n");
   size_t pos = std::string_view(source.bytes.data(), source.bytes.size()).find('\n', header_end + 2) + 1;
   const auto byte = [&](size_t i) { return uint8_t(source.bytes[i]); };
@@ -288,7 +289,10 @@ ImageRgba decode_hdr(const std::string& name) {
     if (byte(pos) != 2 || byte(pos + 1) != 2 || (byte(pos + 2) & 0x80)) break;  // stb_image reads it flat
     pos += 4;
     for (int c = 0; c < 4; ++c)
-      for (int x = 0; x < width && pos < source.bytes.size();) {
+      for (int x = 0; x < width;) {
+        // stb_image would read a 0 run past the end
+        if (pos >= source.bytes.size())
+          fail("{}: cannot read the image: the file ends before its last pixel", name);
         const int count = byte(pos++);
         if (count == 0) fail("{}: cannot read the image: a run of length 0 in scanline {}", name, y);
         x += count > 128 ? count - 128 : count;
