@@ -211,8 +211,8 @@ ImageRgba decode_exr(const std::string& name) {
   // A header can claim far more pixels than the file holds (fuzz_env_image found 7.6 M x 20, 2.4 GB as RGBA
   // floats, in 255 bytes). When the image would be over 64 times the file, its pixels are first decoded into
   // one row (y stride 0), so missing data is found before the image is allocated; real files are a few times
-  // smaller than their image, and those much smaller decode fast. (OpenEXR refuses rows of the file over
-  // about 16 MB, so this row is at most 128 MiB.)
+  // smaller than their image, and those much smaller decode fast. The row itself is 16 bytes a texel: a file
+  // of one row of 117 M half texels still costs 1.9 GB here (OpenEXR accepts rows up to 2 GiB of file data).
   std::error_code ec;
   if (uint64_t(width * height) * sizeof(glm::vec4) > 64 * fs::file_size(name, ec)) {
     std::vector<glm::vec4> row(static_cast<size_t>(width));
