@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Fuzz every mesh reader with libFuzzer (ASan + UBSan): OFF, OBJ, PLY, STL with voxr's own readers, glTF and
 # GLB through Assimp; each input is read and then triangulated, as load_mesh does (fuzz/fuzz_target.h). And
-# the scene reader: JSON text -> Scene -> world triangles (fuzz/fuzz_scene.cpp).
+# the scene reader: JSON text -> Scene -> world triangles (fuzz/fuzz_scene.cpp), and the environment image a
+# scene names: bytes -> .png/.exr/.hdr file -> make_environment_map (fuzz/fuzz_env_image.cpp).
 # usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]      (default: 60 seconds; all targets)
-#   targets: off obj ply stl assimp_gltf assimp_glb scene
+#   targets: off obj ply stl assimp_gltf assimp_glb scene env_image
 #   env: VOXR_FUZZ_BUILD (build tree, default build-fuzz), VOXR_FUZZ_PARALLEL (targets at once, default 1),
 #        VOXR_FUZZ_JOBS (compile jobs, default 2), VOXR_FUZZ_FLAGS (extra libFuzzer flags)
 # Configures a clang build tree with VOXR_BUILD_FUZZERS=ON, builds the targets, seeds each target's working
@@ -16,7 +17,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(off obj ply stl assimp_gltf assimp_glb scene)
+[ ${#targets[@]} -gt 0 ] || targets=(off obj ply stl assimp_gltf assimp_glb scene env_image)
 build=${VOXR_FUZZ_BUILD:-build-fuzz}
 parallel=${VOXR_FUZZ_PARALLEL:-1}
 

@@ -1,13 +1,22 @@
 // PNG and EXR files (io/image_file.h): EXR keeps linear floats exactly, PNG stores sRGB-encoded 8-bit colour
 // and decodes back within a quantization step, OpenImageIO (an independent reader and writer) agrees both
-// ways, errors name the file, and a failed write leaves nothing behind.
+// ways, errors name the file, a failed write leaves nothing behind, and a header claiming more than its file
+// holds is refused before its pixels are allocated.
 #include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "io/image_file.h"
 #include "test_support.h"
@@ -139,6 +148,135 @@ TEST(ImageFile, ReadsGreyAndRgbFilesOfAnotherWriter) {
       EXPECT_EQ(f.pixels[i].w, 1.0f);
     }
   }
+}
+
+// A PNG of `width` x `height` 8-bit RGBA pixels, its IDAT `idat` (not necessarily enough for the pixels).
+std::string png_file(uint32_t width, uint32_t height, const std::string& idat) {
+  const auto chunk = [](const std::string& kind, const std::string& data) {
+    std::string c;
+    for (int i = 3; i >= 0; --i) c += char(uint32_t(data.size()) >> (8 * i));
+    const std::string body = kind + data;
+    const uint32_t crc = uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size())));
+    c += body;
+    for (int i = 3; i >= 0; --i) c += char(crc >> (8 * i));
+    return c;
+  };
+  std::string ihdr;
+  for (uint32_t v : {width, height})
+    for (int i = 3; i >= 0; --i) ihdr += char(v >> (8 * i));
+  ihdr += std::string("\x08\x06\x00\x00\x00", 5);  // 8 bits, RGBA, deflate, filter 0, no interlace
+  return "\x89PNG\r\n\x1a\n" + chunk("IHDR", ihdr) + chunk("IDAT", idat) + chunk("IEND", "");
+}
+
+// Fuzzing the environment image path (fuzz/fuzz_env_image.cpp) found the first; the others came from reading
+// the decoders while it ran. Each is refused with one line naming the file, before a buffer of the size its
+// header claims is allocated.
+TEST(ImageFile, RefusesHeadersThatClaimMoreThanTheFileHolds) {
+  test::TempDir dir;
+  const std::string radiance = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n";
+  const auto error_for = [&](const std::string& name, const std::string& content) {
+    const fs::path file = dir.write(name, content);
+    return std::pair(error_of([&] { read_image(file); }), file.string() + ": ");
+  };
+  // No width: stb_image returned a 0 x 2 image, and copying its pixels dereferenced an empty vector.
+  auto [e, f] = error_for("no_width.hdr", radiance + "-Y 2 +X \n");
+  EXPECT_EQ(e, f + "not a 2-D image");
+  // 7 x 16 M pixels in 60 bytes: stb_image allocated 1.8 GB and decoded the missing bytes as zeros.
+  std::tie(e, f) = error_for("tall.hdr", radiance + "-Y 16000000 +X 7\n" + std::string(8, '\0'));
+  EXPECT_EQ(e, f + "cannot read the image: the file is too short for its 7x16000000 pixels");
+  // 2 x 2 pixels, the last one's 4 bytes missing: read as black before.
+  std::tie(e, f) = error_for("cut.hdr", radiance + "-Y 2 +X 2\n" + std::string(12, '\x80'));
+  EXPECT_EQ(e, f + "cannot read the image: the file ends before its last pixel");
+  // A run of length 0 in a run-length scanline: stb_image looped forever (fuzz_env_image).
+  std::tie(e, f) =
+      error_for("zero_run.hdr", radiance + "-Y 1 +X 8\n" + std::string("\x02\x02\x00\x08\x00", 5));
+  EXPECT_EQ(e, f + "cannot read the image: a run of length 0 in scanline 0");
+  // The file ending inside a run-length scanline: stb_image read a 0 run past the end, and looped.
+  std::tie(e, f) =
+      error_for("cut_run.hdr", radiance + "-Y 1 +X 8\n" + std::string("\x02\x02\x00\x08\x88\x64", 6));
+  EXPECT_EQ(e, f + "cannot read the image: the file ends before its last pixel");
+  // Another format named .hdr: stb_image decoded it as 8-bit gamma 2.2.
+  std::tie(e, f) = error_for("png.hdr", png_file(1, 1, "x"));
+  EXPECT_EQ(e, f + "cannot read the image: not a Radiance HDR file");
+  // An attribute of a type OpenEXR does not know, its size 2^31 - 1: OpenEXR allocated it before finding the
+  // file too short.
+  write_image(gradient(), dir.path() / "big_attribute.exr");
+  std::string exr;
+  {
+    std::ifstream in(dir.path() / "big_attribute.exr", std::ios::binary);
+    exr.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::string attribute("screenWindowWidth\0float\0", 24);
+  ASSERT_NE(exr.find(attribute), std::string::npos);
+  const size_t size_at = exr.find(attribute) + attribute.size();
+  exr[size_at - 8] = 'X';  // an attribute "screenWindowWidtX" of type "floaX"
+  exr[size_at - 2] = 'X';
+  exr.replace(size_at, 4, std::string("\xff\xff\xff\x7f", 4));
+  std::tie(e, f) = error_for("big_attribute.exr", exr);
+  EXPECT_EQ(e,
+            f + fmt::format(
+                    "cannot read the image: header attribute 'screenWindowWidtX' claims 2147483647 bytes, {} "
+                    "are left in the file",
+                    exr.size() - size_at - 4));
+  // An EXR of 2 x 512 texels, its data window made 2^16 wide (512 MiB as RGBA floats) and its last chunks cut
+  // off: the image was allocated before OpenEXR found the pixel data missing (fuzz_env_image); now the pixels
+  // are decoded into one row first.
+  write_image(ImageRgba(2, 512, glm::vec4(1.0f)), dir.path() / "wide.exr");
+  {
+    std::ifstream in(dir.path() / "wide.exr", std::ios::binary);
+    exr.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::string window("dataWindow\0box2i\0\x10\0\0\0", 21);
+  ASSERT_NE(exr.find(window), std::string::npos);
+  const size_t x_max_at = exr.find(window) + window.size() + 8;
+  exr.replace(x_max_at, 4, std::string("\xff\xff\x00\x00", 4));  // x max 2^16 - 1
+  exr.resize(exr.size() - 100);                                  // the last chunks cut off
+  rusage before{};
+  getrusage(RUSAGE_SELF, &before);
+  std::tie(e, f) = error_for("wide.exr", exr);
+  EXPECT_EQ(e.rfind(f + "cannot read the image: ", 0), 0u) << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  rusage after{};
+  getrusage(RUSAGE_SELF, &after);
+  EXPECT_LT(after.ru_maxrss - before.ru_maxrss, 256 * 1024) << "KiB more at the peak";
+  // 20000 x 20000 RGBA in 58 bytes: 1.6 GB allocated before libpng found the data missing.
+  std::tie(e, f) = error_for("huge.png", png_file(20000, 20000, "x"));
+  EXPECT_EQ(e, f + "cannot read the image: the file is too short for its 20000x20000 pixels");
+}
+
+// The bounds refuse nothing real: a wide constant Radiance image is the smallest file for its size (every
+// scanline one 127-pixel run per channel and a shorter one), and a constant PNG compresses near deflate's
+// limit.
+TEST(ImageFile, ReadsMaximallyCompressedFilesOfAnotherWriter) {
+  test::TempDir dir;
+  const auto write = [&](const fs::path& path, uint32_t width, uint32_t height, OIIO::TypeDesc type,
+                         const void* data) {
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path.string());
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(path.string(), OIIO::ImageSpec(int(width), int(height), 3, type)));
+    ASSERT_TRUE(out->write_image(type, data));
+    out->close();
+  };
+  const uint32_t w = 381, h = 3;  // 3 runs of 127 per channel
+  const std::vector<float> rgb(size_t(w) * h * 3, 0.5f);
+  write(dir.path() / "wide.hdr", w, h, OIIO::TypeDesc::FLOAT, rgb.data());
+  // Run-length scanlines at the bound: 4 + 3 runs x 2 bytes x 4 channels each, plus a header.
+  EXPECT_LE(fs::file_size(dir.path() / "wide.hdr"), h * (4 + 3 * 2 * 4) + 200u);
+  const ImageRgba hdr = read_image(dir.path() / "wide.hdr");
+  ASSERT_EQ(hdr.width, w);
+  ASSERT_EQ(hdr.height, h);
+  for (const glm::vec4& p : hdr.pixels) EXPECT_EQ(p, glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
+  // A constant EXR is far smaller than its image: decoded twice (io/image_file.cpp), exact.
+  const ImageRgba flat(1024, 512, glm::vec4(0.25f, 0.5f, 2.0f, 1.0f));
+  write_image(flat, dir.path() / "flat.exr");
+  ASSERT_LT(fs::file_size(dir.path() / "flat.exr") * 64, flat.pixels.size() * sizeof(glm::vec4));
+  EXPECT_EQ(read_image(dir.path() / "flat.exr").pixels, flat.pixels);
+  const uint32_t side = 2000;
+  const std::vector<uint8_t> black(size_t(side) * side * 3, 0);
+  write(dir.path() / "black.png", side, side, OIIO::TypeDesc::UINT8, black.data());
+  const ImageRgba png = read_image(dir.path() / "black.png");
+  ASSERT_EQ(png.width, side);
+  EXPECT_EQ(png.pixels.back(), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
 }
 
 TEST(ImageFile, ErrorsNameTheFileAndLeaveNothing) {

@@ -24,7 +24,8 @@ void write_image(const ImageRgba& image, const std::filesystem::path& path);
 // Reads `path` (.png, .exr or .hdr, by extension) as linear RGBA: PNG decoded from sRGB (16-bit files at
 // 8-bit precision; grey and palette images expanded), EXR's R, G, B (or Y) and A channels, images without
 // alpha get alpha 1. Throws voxr::Error naming `path` when it is missing, has another extension or cannot be
-// decoded.
+// decoded: that includes a header claiming more pixels (or an EXR attribute more bytes) than the file can hold,
+// refused before anything of that size is allocated, a .hdr that ends early or is not a Radiance file.
 ImageRgba read_image(const std::filesystem::path& path);
 
 // The sRGB transfer function (IEC 61966-2-1) and its inverse, per channel, for values in [0, 1].
