@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli_support.h"
 #include "io/image_file.h"
 #include "test_support.h"
 #include "util/error.h"
@@ -307,4 +308,27 @@ TEST(ImageFile, ErrorsNameTheFileAndLeaveNothing) {
 }
 
 }  // namespace
+// The environment-image fuzzer's seeds (fuzz/corpus/env_image: the first byte picks the extension, byte % 3
+// of .png, .exr, .hdr, as fuzz/fuzz_env_image.cpp reads them; the rest is the file) are valid images of
+// every format (else the fuzzer would start from errors): each reads, finite and non-negative.
+TEST(ImageFile, FuzzSeedCorpusReads) {
+  test::TempDir dir;
+  const fs::path corpus = fs::path(VOXR_SOURCE_DIR) / "fuzz" / "corpus" / "env_image";
+  const char* const extensions[] = {".png", ".exr", ".hdr"};
+  size_t files = 0;
+  for (const auto& e : fs::directory_iterator(corpus)) {
+    SCOPED_TRACE(e.path().string());
+    const std::string bytes = test::slurp(e.path());
+    ASSERT_GE(bytes.size(), 2u);
+    const fs::path file = dir.path() / (e.path().stem().string() + extensions[uint8_t(bytes[0]) % 3]);
+    std::ofstream(file, std::ios::binary).write(bytes.data() + 1, std::streamsize(bytes.size() - 1));
+    const ImageRgba image = read_image(file);
+    EXPECT_GT(size_t(image.width) * image.height, 0u);
+    for (const glm::vec4& p : image.pixels)
+      ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && p.x >= 0.0f);
+    ++files;
+  }
+  EXPECT_GE(files, 7u);
+}
+
 }  // namespace voxr
