@@ -134,6 +134,7 @@ void DistanceMapRefraction::set_scene(const TriangleSoup& soup, const std::vecto
   collect_dielectrics(soup, materials, dielectric_corners_, dielectric_materials_);
   material_names_.clear();
   for (const Material& m : materials) material_names_.push_back(m.name);
+  outside_eye_.reset();
 }
 
 void DistanceMapRefraction::resolve_into(const DeviceMesh& mesh, const cl::Buffer& vertex_normals,
@@ -158,13 +159,17 @@ void DistanceMapRefraction::trace(const DeviceMesh& mesh, const cl::Buffer& vert
   if (options.layer_res < kDistanceMapMinRes || options.layer_res > kDistanceMapMaxRes)
     fail("distance-maps: layer resolution {}; {} to {} texels are allowed", options.layer_res,
          kDistanceMapMinRes, kDistanceMapMaxRes);
-  if (const std::optional<uint32_t> around = material_around(dielectric_corners_, dielectric_materials_,
-                                                             uint32_t(material_names_.size()), camera.eye))
-    throw PlacementError("camera.position", camera.eye,
-                         fmt::format("is inside the dielectric '{}': --refraction distance-maps traces paths "
-                                     "from outside the glass (its maps hold no surface beyond it); use "
-                                     "voxel-multi, voxel-exact or reference",
-                                     material_names_[*around]));
+  if (outside_eye_ != camera.eye) {
+    if (const std::optional<uint32_t> around = material_around(dielectric_corners_, dielectric_materials_,
+                                                               uint32_t(material_names_.size()), camera.eye))
+      throw PlacementError(
+          "camera.position", camera.eye,
+          fmt::format("is inside the dielectric '{}': --refraction distance-maps traces paths "
+                      "from outside the glass (its maps hold no surface beyond it); use "
+                      "voxel-multi, voxel-exact or reference",
+                      material_names_[*around]));
+    outside_eye_ = camera.eye;
+  }
   const uint32_t res = options.layer_res;
   const uint64_t face_texels = uint64_t(res) * res;
   cl::Buffer& layers =

@@ -114,6 +114,9 @@ class DistanceMapRefraction {
   std::vector<glm::vec3> dielectric_corners_;
   std::vector<uint32_t> dielectric_materials_;
   std::vector<std::string> material_names_;
+  // The eye the check last passed for this scene: a still camera is not checked again every frame (the
+  // check walks every dielectric triangle on the host).
+  std::optional<glm::vec3> outside_eye_;
   RasterBins bins_;
   GrowingBuffer peel_[2], face_samples_, layers_, environment_, distances_;
 
