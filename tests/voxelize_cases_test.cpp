@@ -7,6 +7,7 @@
 #include "test_support.h"
 #include "voxelize/reference_inside.h"
 #include "voxelize/reference_voxelizer.h"
+#include "voxelize/sparse_voxelizer.h"
 
 namespace voxr {
 namespace {
@@ -18,10 +19,12 @@ TEST(VoxelizeCases, EveryCaseEqualsTheReference) {
   request.resolution = 40;
   const GridSpec grid = fit_grid(soup.bounds(), request);
   Voxelizer voxelizer(test::runtime());
+  SparseVoxelizer sparse(test::runtime());
   ASSERT_GE(voxelize_cases().size(), 5u);
   for (const VoxelizeCase& c : voxelize_cases()) {
     const VoxelizeOptions options = c.options();
-    const VoxelGrid actual = voxelizer.run(soup, grid, options);
+    const VoxelGrid actual =
+        c.layout == "sparse" ? to_dense(sparse.run(soup, grid, options)) : voxelizer.run(soup, grid, options);
     EXPECT_EQ(test::compare_grids(reference_voxelize(soup, grid, options.mode, options.channels), actual), "")
         << c.name;
     if (options.solid) {

@@ -13,7 +13,8 @@ VoxelizeOptions VoxelizeCase::options() const {
 }
 
 std::vector<std::string> VoxelizeCase::cli_flags() const {
-  std::vector<std::string> flags = {"--method", method, "--mode", mode, "--channels", channels};
+  std::vector<std::string> flags = {"--method",   method,   "--mode",   mode,
+                                    "--channels", channels, "--layout", layout};
   if (!solid.empty()) {
     flags.push_back("--solid");
     flags.push_back(solid);
@@ -30,6 +31,8 @@ const std::vector<VoxelizeCase>& voxelize_cases() {
       {"slice", "slice", "conservative", "occ", ""},
       {"solid-parity", "hybrid", "conservative", "occ", "parity"},
       {"solid-flood", "hybrid", "conservative", "occ", "flood"},
+      {"sparse-occ", "hybrid", "conservative", "occ", "", "sparse"},
+      {"sparse-count-normal", "hybrid", "conservative", "occ,count,normal", "", "sparse"},
   };
   return cases;
 }

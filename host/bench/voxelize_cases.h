@@ -17,7 +17,8 @@ struct VoxelizeCase {
   std::string method = "hybrid";
   std::string mode = "conservative";
   std::string channels = "occ";
-  std::string solid;  // empty: surface only
+  std::string solid;             // empty: surface only
+  std::string layout = "dense";  // or "sparse" (host/voxelize/sparse_voxelizer.h)
 
   VoxelizeOptions options() const;
   // The same case as `voxr voxelize` flags.
@@ -25,7 +26,7 @@ struct VoxelizeCase {
 };
 
 // occ, count-normal, all-channels, center, slice (the papers' duplication for every triangle), solid-parity,
-// solid-flood.
+// solid-flood, and the sparse layout's sparse-occ and sparse-count-normal.
 const std::vector<VoxelizeCase>& voxelize_cases();
 // Throws voxr::Error naming an unknown case and listing the known ones.
 const VoxelizeCase& find_voxelize_case(const std::string& name);

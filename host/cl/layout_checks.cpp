@@ -10,7 +10,7 @@
 
 namespace voxr {
 
-static_assert(sizeof(VoxGridParams) == 84);
+static_assert(sizeof(VoxGridParams) == 88);
 static_assert(sizeof(CopyBox) == 8);
 static_assert(sizeof(CopyRecord) == 8);
 static_assert(sizeof(VoxSnappedTriangle) == 48);

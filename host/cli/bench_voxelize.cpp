@@ -19,6 +19,7 @@
 #include "io/volume_writer.h"
 #include "util/clock.h"
 #include "util/median.h"
+#include "voxelize/sparse_voxelizer.h"
 #include "voxelize/voxelizer.h"
 
 namespace voxr::cli {
@@ -55,6 +56,7 @@ void write_off(const TriangleSoup& soup, const fs::path& path) {
 }
 
 struct FreshRun {
+  uint64_t peak_rss = 0;    // the process's peak resident memory, bytes
   double process_ms = 0.0;  // measured from here: spawn to exit
   double wall_ms = 0.0;     // the report's ms.wall
   double report_process_ms = 0.0;
@@ -70,8 +72,8 @@ FreshRun run_fresh(const std::vector<std::string>& arguments, const fs::path& re
   for (const char* extra : {"-q", "--report"}) args.push_back(extra);
   args.push_back(report.string());
   const auto start = Clock::now();
-  const int status = run_program(args);
   FreshRun run;
+  const int status = run_program(args, &run.peak_rss);
   run.process_ms = ms_since(start);
   if (status != 0) fail("the fresh process `voxr voxelize` failed (see above)");
   std::ifstream in(report);
@@ -88,10 +90,14 @@ FreshRun run_fresh(const std::vector<std::string>& arguments, const fs::path& re
 int run_bench_voxelize(const BenchVoxelizeArgs& args) {
   ClRuntime cl(args.device);
   Voxelizer voxelizer(cl);
+  SparseVoxelizer sparse(cl);
   std::vector<const VoxelizeCase*> cases;
   for (const std::string& name : args.cases) {
     cases.push_back(&find_voxelize_case(name));
-    voxelizer.prepare(cases.back()->options());
+    if (cases.back()->layout == "sparse")
+      sparse.prepare(cases.back()->options());
+    else
+      voxelizer.prepare(cases.back()->options());
   }
   if (!args.write.empty()) check_volume_output("out." + args.write, glm::uvec3(1));
   const fs::path scratch = fs::temp_directory_path() / fmt::format("voxr-bench-{}", getpid());
@@ -109,17 +115,23 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
       "frame_kernels_ms,frame_kernels_min_ms,frame_kernels_max_ms,frame_wall_ms,frame_wall_min_ms,"
       "frame_wall_max_ms,job_wall_ms,job_wall_min_ms,job_wall_max_ms,fresh_wall_ms,fresh_wall_min_ms,"
       "fresh_wall_max_ms,fresh_process_ms,fresh_process_min_ms,fresh_process_max_ms,triangles_per_s,"
-      "voxels_per_s,repeats,fresh_runs,load_before,load_after,write\n";
+      "voxels_per_s,repeats,fresh_runs,load_before,load_after,write,layout,device_bytes,device_bytes_per_"
+      "voxel,"
+      "host_bytes,host_bytes_per_voxel,fresh_peak_rss_bytes,slabs\n";
   fmt::print("device: {} ({}, driver {})\n", cl.device().name, cl.device().platform_name,
              cl.device().driver_version);
   fmt::print(
       "times in ms, median [min-max]; frame = mesh on the device, grid stays there; job = upload + voxelize "
       "+ "
-      "readback in this process; fresh = a new `voxr voxelize` process{}\n",
+      "readback in this process (sparse: the frame is the job, there is no device-only sparse frame); fresh "
+      "= a "
+      "new `voxr voxelize` process{}; memory: device bytes (sparse: the largest slab's) and host bytes of "
+      "the "
+      "result per set voxel, fresh process peak RSS\n",
       args.write.empty() ? "" : fmt::format(" writing .{}", args.write));
-  fmt::print("{:<10} {:>5} {:<13} {:>9} {:>22} {:>22} {:>22} {:>22} {:>22} {:>9} {:>5}\n", "mesh", "res",
-             "case", "voxels", "frame kernels", "frame wall", "job wall", "fresh ms.wall", "fresh process",
-             "Mtri/s", "load");
+  fmt::print("{:<10} {:>5} {:<19} {:>10} {:>22} {:>22} {:>22} {:>22} {:>22} {:>9} {:>7} {:>7} {:>8} {:>5}\n",
+             "mesh", "res", "case", "voxels", "frame kernels", "frame wall", "job wall", "fresh ms.wall",
+             "fresh process", "Mtri/s", "dev B/v", "host B/v", "RSS MiB", "load");
   for (const std::string& name : args.meshes) {
     const BenchMesh mesh = make_bench_mesh(name);
     const Bounds bounds = mesh.soup.bounds();
@@ -135,23 +147,47 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
         fit_request_to_format(request, output);
         const GridSpec grid = fit_grid(bounds, request);
 
-        // Per frame: one upload, the grid stays on the device.
-        const DeviceMesh device_mesh =
-            upload_mesh(cl, mesh.soup, grid, options.solid ? SplitCull::kColumns : SplitCull::kGrid, &bounds);
-        DeviceVoxelGrid frame_grid;
-        std::vector<double> frame_kernels, frame_wall;
+        const bool sparse_case = c->layout == "sparse";
+        std::vector<double> frame_kernels, frame_wall, job_wall;
         VoxelizeStats frame;
-        for (int r = 0; r < args.warmup + args.repeat; ++r) {
-          voxelizer.run(device_mesh, grid, options, frame_grid, &frame);
-          if (r < args.warmup) continue;
-          frame_kernels.push_back(frame.kernels_ms);
-          frame_wall.push_back(frame.wall_ms);
+        uint64_t voxels = 0, device_bytes = 0, host_bytes = 0, slabs = 0;
+        if (sparse_case) {
+          // The sparse job in this process (upload, slabs, readback): its kernels and wall time.
+          for (int r = 0; r < args.warmup + args.repeat; ++r) {
+            SparseStats sparse_stats;
+            const SparseVoxelGrid result =
+                sparse.run(mesh.soup, grid, options, 0, &frame, &sparse_stats, &bounds);
+            voxels = result.voxels_set;
+            device_bytes = sparse_stats.peak_device_bytes;
+            host_bytes = result.memory_bytes();
+            slabs = sparse_stats.slabs;
+            if (r < args.warmup) continue;
+            frame_kernels.push_back(frame.kernels_ms);
+            frame_wall.push_back(frame.wall_ms);
+            job_wall.push_back(frame.wall_ms);
+          }
+        } else {
+          // Per frame: one upload, the grid stays on the device.
+          const DeviceMesh device_mesh = upload_mesh(
+              cl, mesh.soup, grid, options.solid ? SplitCull::kColumns : SplitCull::kGrid, &bounds);
+          DeviceVoxelGrid frame_grid;
+          for (int r = 0; r < args.warmup + args.repeat; ++r) {
+            voxelizer.run(device_mesh, grid, options, frame_grid, &frame);
+            if (r < args.warmup) continue;
+            frame_kernels.push_back(frame.kernels_ms);
+            frame_wall.push_back(frame.wall_ms);
+          }
+          build_rank_index(cl, frame_grid);  // voxels_set for occupancy-only cases
+          voxels = frame_grid.voxels_set;
+          device_bytes = frame_grid.device_bytes();
+          host_bytes =
+              dense_occupancy_bytes(grid.dims) + (frame_grid.device_bytes() - frame_grid.words() * 4 -
+                                                  (frame_grid.has_rank_index ? frame_grid.words() * 8 : 0));
         }
-        build_rank_index(cl, frame_grid);  // voxels_set for occupancy-only cases
-        const uint64_t voxels = frame_grid.voxels_set;
 
         // The whole job in this process, and in fresh processes, interleaved.
-        std::vector<double> job_wall, fresh_wall, fresh_process;
+        std::vector<double> fresh_wall, fresh_process;
+        uint64_t peak_rss = 0;
         std::vector<std::string> flags = {mesh_file.string(), "--res", std::to_string(res)};
         if (!args.device.empty()) {
           flags.push_back("--device");
@@ -164,7 +200,7 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
           flags.push_back(output.string());
         }
         for (int r = 0; r < std::max(args.warmup + args.repeat, args.fresh); ++r) {
-          if (r < args.warmup + args.repeat) {
+          if (!sparse_case && r < args.warmup + args.repeat) {
             VoxelizeStats job;
             voxelizer.run(mesh.soup, grid, options, &job, &bounds);
             if (r >= args.warmup) job_wall.push_back(job.wall_ms);
@@ -173,6 +209,7 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
             const FreshRun f = run_fresh(flags, scratch / "report.json", cl.device().label());
             fresh_wall.push_back(f.wall_ms);
             fresh_process.push_back(f.process_ms);
+            peak_rss = std::max(peak_rss, f.peak_rss);
           }
         }
         const double load_after = load_averages()[0];
@@ -180,19 +217,27 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
                      nw = spread(fresh_wall), np = spread(fresh_process);
         const double tri_per_s = fk.median > 0 ? double(frame.triangles) / (fk.median * 1e-3) : 0.0;
         const double vox_per_s = fk.median > 0 ? double(voxels) / (fk.median * 1e-3) : 0.0;
+        auto per_voxel = [&](uint64_t bytes) { return voxels ? double(bytes) / double(voxels) : 0.0; };
         const std::string dims = fmt::format("{}x{}x{}", grid.dims.x, grid.dims.y, grid.dims.z);
         csv += fmt::format(
             "\"{}\",\"{}\",{},{},{},{},{},{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:"
             ".3f},"
-            "{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.0f},{:.0f},{},{},{:.2f},{:.2f},{}\n",
+            "{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.0f},{:.0f},{},{},{:.2f},{:.2f},{},{},{},{:.3f},{},{"
+            ":.3f},{},{}"
+            "\n",
             cl.device().name, cl.device().driver_version, name, frame.triangles, res, dims, c->name, voxels,
             frame.direct_triangles, frame.copies, fk.median, fk.min, fk.max, fw.median, fw.min, fw.max,
             jw.median, jw.min, jw.max, nw.median, nw.min, nw.max, np.median, np.min, np.max, tri_per_s,
-            vox_per_s, frame_kernels.size(), fresh_wall.size(), load_before, load_after, args.write);
-        fmt::print("{:<10} {:>5} {:<13} {:>9} {:>22} {:>22} {:>22} {:>22} {:>22} {:>9.1f} {:>5.2f}\n", name,
-                   res, c->name, voxels, format_spread(fk), format_spread(fw), format_spread(jw),
-                   args.fresh ? format_spread(nw) : "-", args.fresh ? format_spread(np) : "-",
-                   tri_per_s * 1e-6, load_after);
+            vox_per_s, frame_kernels.size(), fresh_wall.size(), load_before, load_after, args.write,
+            c->layout, device_bytes, per_voxel(device_bytes), host_bytes, per_voxel(host_bytes), peak_rss,
+            slabs);
+        fmt::print(
+            "{:<10} {:>5} {:<19} {:>10} {:>22} {:>22} {:>22} {:>22} {:>22} {:>9.1f} {:>7.2f} {:>7.2f} {:>8} "
+            "{:>5.2f}\n",
+            name, res, c->name, voxels, format_spread(fk), format_spread(fw), format_spread(jw),
+            args.fresh ? format_spread(nw) : "-", args.fresh ? format_spread(np) : "-", tri_per_s * 1e-6,
+            per_voxel(device_bytes), per_voxel(host_bytes),
+            args.fresh ? fmt::format("{:.0f}", double(peak_rss) / (1 << 20)) : "-", load_after);
         std::fflush(stdout);
       }
     }

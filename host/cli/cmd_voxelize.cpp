@@ -31,6 +31,7 @@
 #include "io/volume_writer.h"
 #include "metrics/voxel_surface_error.h"
 #include "util/clock.h"
+#include "voxelize/sparse_voxelizer.h"
 #include "voxelize/voxelizer.h"
 
 namespace voxr::cli {
@@ -49,6 +50,8 @@ struct VoxelizeArgs {
   std::string channels = "occ";
   std::string device;
   std::string report;
+  std::string layout = "auto";
+  std::string memory_budget;  // empty: from the device
   uint32_t rows_per_copy = 4;
   std::optional<double> error_target;  // the surface error to meet (voxel_surface_error.h, chamfer)
   bool profile = false;
@@ -93,6 +96,54 @@ VoxelizeOptions voxelize_options(const VoxelizeArgs& args) {
   return options;
 }
 
+// --memory-budget: bytes with an optional K, M, G or T suffix (powers of 1024).
+uint64_t parse_memory_budget(const std::string& text) {
+  size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    fail("--memory-budget '{}': expected a size such as 512M or 2G", text);
+  }
+  std::string suffix = text.substr(used);
+  for (char& c : suffix) c = char(std::toupper(static_cast<unsigned char>(c)));
+  if (!suffix.empty() && suffix.back() == 'B' && suffix.size() <= 3 && suffix != "B") suffix.pop_back();
+  if (suffix.size() == 2 && suffix[1] == 'I') suffix.pop_back();  // 2GiB, 2Gi
+  const std::string units = "KMGT";
+  double scale = 1.0;
+  if (!suffix.empty() && suffix != "B") {
+    const size_t at = units.find(suffix);
+    if (suffix.size() != 1 || at == std::string::npos)
+      fail("--memory-budget '{}': unknown unit '{}' (use K, M, G or T)", text, text.substr(used));
+    scale = std::ldexp(1.0, 10 * int(at + 1));
+  }
+  const double bytes = value * scale;
+  if (!(bytes >= double(1 << 20)) || bytes > 1e18) fail("--memory-budget '{}': give at least 1M", text);
+  return uint64_t(bytes);
+}
+
+// --layout auto: dense bits up to kDenseLimitBytes (small grids voxelize fastest dense: no coarse pass, and
+// the host writes straight into the result), bricks beyond, or when the dense bits exceed what the device
+// can allocate.
+constexpr uint64_t kDenseLimitBytes = uint64_t(512) << 20;
+
+bool choose_sparse(const std::string& layout, const GridSpec& grid, const VoxelizeOptions& options,
+                   const ClRuntime& cl) {
+  if (layout == "dense") return false;
+  if (layout == "sparse") {
+    SparseVoxelizer::validate(options);
+    return true;
+  }
+  const uint64_t dense = dense_occupancy_bytes(grid.dims);
+  if (dense <= kDenseLimitBytes && dense <= cl.device().max_allocation) return false;
+  try {
+    SparseVoxelizer::validate(options);
+  } catch (const Error&) {
+    return false;  // solid fill, slicemap, lists: dense, which says so itself if the grid does not fit
+  }
+  return true;
+}
+
 struct Phases {
   double load_ms = 0.0;      // reading the input, validating it, fitting the grid
   double wait_ms = 0.0;      // waiting for the runtime and programs after the load
@@ -104,7 +155,8 @@ struct Phases {
 
 nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const GridSpec& grid,
                            const VoxelizeOptions& options, const VoxelizeStats& stats, const Phases& phases,
-                           const ChannelSet& channels) {
+                           const ChannelSet& channels, const std::optional<SparseStats>& sparse,
+                           uint64_t host_bytes) {
   nlohmann::json stages = nlohmann::json::object();
   for (const auto& [name, ms] : stats.stage_ms) stages[name] = ms;
   nlohmann::json report = {
@@ -126,6 +178,8 @@ nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const 
       {"batches", stats.batches},
       {"voxels_set", stats.voxels_set},
       {"device_bytes", stats.device_bytes},
+      {"layout", sparse ? "sparse" : "dense"},
+      {"host_bytes", host_bytes},
       {"ms",
        {{"upload", stats.upload_ms},
         {"kernels", stats.kernels_ms},
@@ -140,6 +194,17 @@ nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const 
         {"write", phases.write_ms},
         {"process", phases.process_ms}}},
   };
+  if (sparse)
+    report["sparse"] = {
+        {"brick", kBrickEdge},
+        {"slabs", sparse->slabs},
+        {"bricks_marked", sparse->bricks_marked},
+        {"bricks", sparse->bricks_kept},
+        {"memory_budget", sparse->memory_budget},
+        {"peak_device_bytes", sparse->peak_device_bytes},
+        {"device_bytes_per_voxel",
+         stats.voxels_set ? double(sparse->peak_device_bytes) / double(stats.voxels_set) : 0.0},
+        {"host_bytes_per_voxel", stats.voxels_set ? double(host_bytes) / double(stats.voxels_set) : 0.0}};
   if (options.method == VoxelizeMethod::kSlicemap) report["slicing"] = slicemap_slicing_name(options.slicing);
   if (options.solid)
     report["solid"] = {{"mode", solid_mode_name(*options.solid)},
@@ -184,6 +249,9 @@ int run_voxelize(const VoxelizeArgs& args) {
   if (args.error_target && (args.res || !args.dims.empty()))
     fail("--error-target chooses the resolution; leave out --res and --dims");
   if (!args.report.empty()) check_output_path(args.report);
+  if (args.layout != "auto" && args.layout != "dense" && args.layout != "sparse")
+    fail("--layout '{}': expected auto, dense or sparse", args.layout);
+  const uint64_t memory_budget = args.memory_budget.empty() ? 0 : parse_memory_budget(args.memory_budget);
   const std::filesystem::path viewer = args.view ? find_viewer(args.output) : std::filesystem::path();
   VoxelizeOptions options = voxelize_options(args);
   const bool tty = isatty(fileno(stderr)) && !args.quiet;
@@ -275,7 +343,25 @@ int run_voxelize(const VoxelizeArgs& args) {
   const double search_ms = args.error_target ? ms_since(search_start) : 0.0;
 
   VoxelizeStats stats;
-  const VoxelGrid result = voxelizer.run(soup, grid, options, &stats, &bounds);
+  const bool sparse_layout = choose_sparse(args.layout, grid, options, cl);
+  if (sparse_layout && args.error_target)
+    fail("--error-target searches dense grids: leave out --layout sparse");
+  std::optional<SparseStats> sparse_stats;
+  SparseVoxelGrid sparse_result;
+  VoxelGrid result;
+  if (sparse_layout) {
+    SparseVoxelizer sparse(cl);
+    sparse_stats.emplace();
+    sparse_result = sparse.run(soup, grid, options, memory_budget, &stats, &*sparse_stats, &bounds);
+  } else {
+    result = voxelizer.run(soup, grid, options, &stats, &bounds);
+  }
+  const ChannelSet result_channels = sparse_layout ? sparse_result.channels : result.channels;
+  const uint64_t host_bytes =
+      sparse_layout
+          ? sparse_result.memory_bytes()
+          : (result.occ.size() + result.inside.size() + result.count.size() + result.material.size()) * 4 +
+                result.normal_sum.size() * 24;
   // The saving is measured: the same job on the fixed grid it replaces.
   VoxelizeStats fixed;
   GridSpec fixed_grid;
@@ -297,12 +383,13 @@ int run_voxelize(const VoxelizeArgs& args) {
   if (!args.output.empty()) {
     const auto write_start = Clock::now();
     if (tty) fmt::print(stderr, "writing {}...", args.output);
-    written = write_volume(result, args.output);
+    written = sparse_layout ? write_volume(sparse_result, args.output) : write_volume(result, args.output);
     if (tty) fmt::print(stderr, "\r{:<60}\r", "");
     phases.write_ms = ms_since(write_start);
   }
   phases.process_ms = ms_since(process_start);
-  nlohmann::json report = make_report(args, cl, grid, options, stats, phases, result.channels);
+  nlohmann::json report =
+      make_report(args, cl, grid, options, stats, phases, result_channels, sparse_stats, host_bytes);
   if (choice) {
     nlohmann::json trials = nlohmann::json::array();
     for (const ResolutionTrial& t : choice->trials)
@@ -339,7 +426,7 @@ int run_voxelize(const VoxelizeArgs& args) {
     fmt::print("grid       {} x {} x {}, voxel {:.6g}, {}{}, channels {}\n", grid.dims.x, grid.dims.y,
                grid.dims.z, grid.voxel_size, rule,
                options.solid ? fmt::format(", solid {}", solid_mode_name(*options.solid)) : "",
-               result.channels.to_string());
+               result_channels.to_string());
     fmt::print("copies     {} in {} batch(es), {} raster work items\n", stats.copies, stats.batches,
                stats.work_items);
     fmt::print("voxels set {} ({:.3f}% of {})\n", stats.voxels_set,
@@ -347,7 +434,19 @@ int run_voxelize(const VoxelizeArgs& args) {
     if (options.solid)
       fmt::print("inside     {} voxels ({} questionable columns, {} flood rounds)\n", stats.inside_voxels,
                  stats.questionable_columns, stats.flood_iterations);
-    fmt::print("memory     {:.1f} MiB on the device\n", double(stats.device_bytes) / (1 << 20));
+    if (sparse_stats)
+      fmt::print(
+          "layout     sparse: {} bricks of 8^3 ({} marked), {} slab(s) under a {:.0f} MiB budget; {:.1f} MiB "
+          "on the "
+          "device at most ({:.2f} B per set voxel), {:.1f} MiB on the host ({:.2f} B per set voxel)\n",
+          sparse_stats->bricks_kept, sparse_stats->bricks_marked, sparse_stats->slabs,
+          double(sparse_stats->memory_budget) / (1 << 20), double(stats.device_bytes) / (1 << 20),
+          double(stats.device_bytes) / double(std::max<uint64_t>(stats.voxels_set, 1)),
+          double(host_bytes) / (1 << 20),
+          double(host_bytes) / double(std::max<uint64_t>(stats.voxels_set, 1)));
+    else
+      fmt::print("memory     {:.1f} MiB on the device (dense layout)\n",
+                 double(stats.device_bytes) / (1 << 20));
     if (choice) {
       std::string trials;
       for (const ResolutionTrial& t : choice->trials)
@@ -419,6 +518,15 @@ Command add_voxelize(CLI::App& app) {
                   "two-sided mean surface distance over the longest side, measured per candidate; reports "
                   "the saving against --res 512")
       ->check(CLI::Range(0.0, 1.0));
+  sub->add_option(
+         "--layout", args->layout,
+         "dense (one bit per voxel of the grid), sparse (8^3 bricks where the surface is: memory grows "
+         "with the surface, for 2048^3 and beyond) or auto (sparse once the dense bits pass 512 MiB or "
+         "the device's largest allocation)")
+      ->capture_default_str();
+  sub->add_option("--memory-budget", args->memory_budget,
+                  "device memory a sparse run may use, e.g. 512M or 4G (default: a quarter of the device's "
+                  "memory, at most twice its largest allocation); larger grids are voxelized in slabs");
   sub->add_option("--rows-per-copy", args->rows_per_copy, "rows one raster work item walks (tuning)")
       ->check(CLI::Range(1u, 4096u))
       ->capture_default_str();

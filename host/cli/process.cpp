@@ -1,6 +1,7 @@
 #include "cli/process.h"
 
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,7 +22,7 @@ std::filesystem::path executable_folder() {
   return executable_path().parent_path();
 }
 
-int run_program(std::vector<std::string> argv) {
+int run_program(std::vector<std::string> argv, uint64_t* peak_rss_bytes) {
   std::vector<char*> pointers;
   for (std::string& a : argv) pointers.push_back(a.data());
   pointers.push_back(nullptr);
@@ -30,8 +31,10 @@ int run_program(std::vector<std::string> argv) {
   if (posix_spawn(&pid, pointers[0], nullptr, nullptr, pointers.data(), environ) != 0)
     fail("cannot start {}", argv[0]);
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  rusage usage{};
+  while (wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
   }
+  if (peak_rss_bytes) *peak_rss_bytes = uint64_t(usage.ru_maxrss) * 1024;  // Linux: KiB
   return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 

@@ -1,6 +1,7 @@
 // Small helpers the subcommands share: finding the executable, starting a program and waiting for it.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -12,8 +13,9 @@ std::filesystem::path executable_path();
 std::filesystem::path executable_folder();
 
 // Runs `argv` (argv[0] = the program's path) with this process's environment, waits for it and returns its
-// exit status (1 when it did not exit normally). Throws voxr::Error when it cannot be started.
-int run_program(std::vector<std::string> argv);
+// exit status (1 when it did not exit normally); `peak_rss_bytes` (optional) receives its peak resident
+// memory. Throws voxr::Error when it cannot be started.
+int run_program(std::vector<std::string> argv, uint64_t* peak_rss_bytes = nullptr);
 
 // Replaces this process with `program` given this process's arguments (argv[0] becomes `program`). Returns
 // only by throwing voxr::Error when `program` cannot be started.

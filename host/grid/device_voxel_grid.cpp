@@ -58,6 +58,7 @@ void DeviceVoxelGrid::reset(const GridSpec& grid, ChannelSet set) {
   has_rank_index = false;
   has_triangle_lists = false;
   list_capacity = 0;
+  brick_slots = 0;
 }
 
 void DeviceVoxelGrid::adopt_occupancy(ClRuntime& cl, uint32_t* words_data, uint64_t count) {

@@ -70,8 +70,13 @@ class DeviceVoxelGrid {
   GrowingBuffer count, normal_sum, normal, material;
   GrowingBuffer list_offsets, list_ids;
 
-  // 32-bit words of a dense bit channel (occ, inside) on `spec`.
-  uint64_t words() const { return (spec.voxel_count() + 31) / 32; }
+  // Sparse storage (host/voxelize/sparse_voxelizer.h): occ holds brick_slots 8^3 bricks of 16 words each
+  // (host/grid/sparse_voxel_grid.h's brick layout) instead of dense bits; the rank index and the sparse
+  // channels follow that order. 0: dense.
+  uint64_t brick_slots = 0;
+
+  // 32-bit words of occ (dense bits on `spec`, or the brick slots' words) and of a dense inside channel.
+  uint64_t words() const { return brick_slots ? brick_slots * 16 : (spec.voxel_count() + 31) / 32; }
   // Device memory the present channels use.
   uint64_t device_bytes() const;
   VoxGridView view() const;

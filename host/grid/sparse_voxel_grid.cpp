@@ -98,8 +98,8 @@ VoxelGrid to_dense(const SparseVoxelGrid& sparse) {
     out.occ[l >> 5] |= 1u << (l & 31);
   });
   out.voxels_set = sparse.voxels_set;
-  const bool any_channel =
-      !sparse.count.empty() || !sparse.normal_sum.empty() || !sparse.normal.empty() || !sparse.material.empty();
+  const bool any_channel = !sparse.count.empty() || !sparse.normal_sum.empty() || !sparse.normal.empty() ||
+                           !sparse.material.empty();
   if (!any_channel) return out;
   // Dense rank of a voxel: the set bits of the words before its own, and of its word below it.
   std::vector<uint64_t> before(out.occ.size());

@@ -26,9 +26,9 @@
 
 namespace voxr {
 
-constexpr uint32_t kBrickEdge = 8;                                        // voxels along a brick's edge
+constexpr uint32_t kBrickEdge = 8;                                       // voxels along a brick's edge
 constexpr uint32_t kBrickVoxels = kBrickEdge * kBrickEdge * kBrickEdge;  // 512
-constexpr uint32_t kBrickWords = kBrickVoxels / 32;                       // 16 occupancy words per brick
+constexpr uint32_t kBrickWords = kBrickVoxels / 32;                      // 16 occupancy words per brick
 
 // Bricks along each axis of a grid of `dims` voxels (the last brick of an axis may stick out of the grid;
 // its voxels past dims are never set).

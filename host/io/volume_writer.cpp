@@ -62,4 +62,9 @@ void check_volume_output(const fs::path& out, const glm::uvec3& dims) {
   if (format == Format::kVox) check_vox_dims(out, dims);
 }
 
+std::vector<std::filesystem::path> write_volume(const SparseVoxelGrid& grid,
+                                                const std::filesystem::path& out) {
+  return write_volume(to_dense(grid), out);
+}
+
 }  // namespace voxr

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "core/grid_spec.h"
+#include "grid/sparse_voxel_grid.h"
 #include "grid/voxel_grid.h"
 
 namespace voxr {
@@ -19,6 +20,9 @@ namespace voxr {
 // naming `out` for an unknown extension, a missing folder, a grid the format cannot hold, or a failed write;
 // on error no partial file is left under any of the output names.
 std::vector<std::filesystem::path> write_volume(const VoxelGrid& grid, const std::filesystem::path& out);
+// The same for a grid in bricks.
+std::vector<std::filesystem::path> write_volume(const SparseVoxelGrid& grid,
+                                                const std::filesystem::path& out);
 
 // Adapts a grid request to what the format of `out` holds: .binvox stores cubic grids only, so a request by
 // resolution (no explicit dims) becomes resolution^3 around the scene. Other formats: unchanged.

@@ -11,8 +11,9 @@ namespace {
 
 constexpr size_t kGroup = 256;
 
-Defines base_defines(const VoxelizeOptions& options) {
+Defines base_defines(const VoxelizeOptions& options, bool sparse = false) {
   Defines d = {{"VOXR_MODE", std::to_string(int(options.mode))}, {"WG_SIZE", std::to_string(kGroup)}};
+  if (sparse) d.push_back({"VOX_SPARSE", "1"});
   const Defines channels = channel_defines();
   d.insert(d.end(), channels.begin(), channels.end());
   return d;
@@ -33,7 +34,15 @@ SliceVoxelizer::SliceVoxelizer(ClRuntime& cl, VoxelizeMethod method)
 }
 
 std::vector<ProgramSpec> SliceVoxelizer::programs(const VoxelizeOptions& options) const {
-  const Defines base = base_defines(options);
+  return programs_of(options, false);
+}
+
+std::vector<ProgramSpec> SliceVoxelizer::sparse_programs(const VoxelizeOptions& options) const {
+  return programs_of(options, true);
+}
+
+std::vector<ProgramSpec> SliceVoxelizer::programs_of(const VoxelizeOptions& options, bool sparse) const {
+  const Defines base = base_defines(options, sparse);
   const bool hybrid = method_ == VoxelizeMethod::kHybrid, grid = method_ == VoxelizeMethod::kGrid;
   std::vector<ProgramSpec> specs = scan_programs();
   specs.push_back({"vox_setup.cl", with(base, "VOX_SETUP_LIST", hybrid ? "1" : "0")});
@@ -54,13 +63,29 @@ std::vector<ProgramSpec> SliceVoxelizer::programs(const VoxelizeOptions& options
 
 void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
                          DeviceVoxelGrid& out, VoxelizeStats& stats) {
+  run(mesh, grid, options, SliceWindow{}, out, stats);
+}
+
+void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+                         const SliceWindow& window, DeviceVoxelGrid& out, VoxelizeStats& stats) {
   auto progress = [&](const char* stage) {
     if (options.progress) options.progress(stage);
   };
   const bool hybrid = method_ == VoxelizeMethod::kHybrid, grid_method = method_ == VoxelizeMethod::kGrid;
-  const uint32_t margin = options.mode == RasterMode::kConservative ? snap_margin(grid, mesh.bounds()) : 0;
+  const uint32_t margin =
+      options.mode == RasterMode::kConservative ? snap_margin(grid, mesh.bounds()) + window.extra_margin : 0;
   const uint64_t tris = mesh.triangle_count();
-  const Defines base = base_defines(options);
+  const bool sparse = window.bricks != nullptr;
+  const Defines base = base_defines(options, sparse);
+  const uint32_t slices = window.slices ? window.slices : grid.dims.z;
+  VOXR_CHECK_LE(uint64_t(window.first_slice) + slices, uint64_t(grid.dims.z));
+  // The kernels' grid: the window's slices, snapped z relative to its first.
+  auto grid_params = [&](uint32_t count, uint32_t rows, uint32_t channel_bits) {
+    VoxGridParams p = make_grid_params(grid, count, margin, rows, channel_bits);
+    p.dims[2] = slices;
+    p.first_slice = window.first_slice;
+    return p;
+  };
   const uint32_t channels = options.channels.bits;
   const bool packed = packed_sums(options.channels);
   uint64_t scratch_bytes = 0;
@@ -84,6 +109,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
   progress("surface");
   cl::Buffer& occ = out.occupancy_for_writing(cl_);
   cl::Buffer dummy = scratch("unused channel", 4);
+  const cl::Buffer& bricks = sparse ? *window.bricks : dummy;
 
   // Which triangles go through the copy records: the large ones the direct pass lists (hybrid), or all.
   // With deferred counts the list's length stays on the device (`large`) and the stages after it run over
@@ -95,8 +121,8 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     large = scratch("the large-triangle count", 4);
     cl_.fill_zero(large, 4, "clear");
     cl::Kernel direct = cl_.kernel("vox_direct.cl", "vox_direct", with(base, "VOX_PASS", "0"));
-    cl_.launch("direct", direct, tris, kGroup, make_grid_params(grid, uint32_t(tris), margin),
-               mesh.positions(), mesh.triangles(), list, large, occ, dummy, dummy, dummy);
+    cl_.launch("direct", direct, tris, kGroup, grid_params(uint32_t(tris), 4, 0), mesh.positions(),
+               mesh.triangles(), list, large, occ, dummy, dummy, dummy, bricks);
     uint64_t& capacity = out.capacities.listed;
     if (cl_.counts_deferred() && capacity > 0) {
       listed = std::min(capacity, tris);
@@ -113,8 +139,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     }
     stats.direct_triangles = tris - listed;
   }
-  const VoxGridParams params =
-      make_grid_params(grid, uint32_t(listed), margin, options.rows_per_copy, channels);
+  const VoxGridParams params = grid_params(uint32_t(listed), options.rows_per_copy, channels);
 
   // Setup of the listed triangles: snapped records, and copy counts and boxes for the slice path.
   cl::Buffer snapped = scratch("snapped triangles", listed * sizeof(VoxSnappedTriangle));
@@ -140,15 +165,15 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     if (listed == 0) return;
     if (grid_method) {
       cl::Kernel slab_kernel = cl_.kernel("vox_grid.cl", "vox_grid", p);
-      for (uint32_t k = 0; k < grid.dims.z; ++k)
-        cl_.launch(name, slab_kernel, listed, kGroup, params, snapped, cl_uint(k), occ, ranked, acc,
-                   material);
+      for (uint32_t k = 0; k < slices; ++k)
+        cl_.launch(name, slab_kernel, listed, kGroup, params, snapped, cl_uint(k), occ, ranked, acc, material,
+                   bricks);
       return;
     }
     cl::Kernel raster = cl_.kernel("vox_raster.cl", "vox_raster", p);
     copies_.for_each_batch(cl_, "expand", [&](const cl::Buffer& records, uint32_t count) {
       cl_.launch(name, raster, count, kGroup, params, snapped, records, copies_.window_records(), occ, ranked,
-                 acc, material);
+                 acc, material, bricks);
     });
   };
   raster_listed("raster", 0, params, dummy, dummy, dummy);
@@ -189,10 +214,10 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     const cl::Buffer& ranked = out.ranked.buffer;
     if (hybrid && tris > 0) {
       cl::Kernel direct = cl_.kernel("vox_direct.cl", "vox_direct", with(base, "VOX_PASS", "1"));
-      VoxGridParams direct_params = make_grid_params(grid, uint32_t(tris), margin, 1, channels);
+      VoxGridParams direct_params = grid_params(uint32_t(tris), 1, channels);
       direct_params.dims[3] = uint32_t(set);
       cl_.launch("attributes", direct, tris, kGroup, direct_params, mesh.positions(), mesh.triangles(), list,
-                 dummy, occ, ranked, acc, material);
+                 dummy, occ, ranked, acc, material, bricks);
     }
     VoxGridParams attribute_params = params;
     attribute_params.dims[3] = uint32_t(set);
@@ -250,11 +275,11 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
       list_params.list_capacity = uint32_t(pairs);
       if (hybrid && tris > 0) {
         cl::Kernel direct = cl_.kernel("vox_direct.cl", "vox_direct", with(base, "VOX_PASS", "2"));
-        VoxGridParams direct_params = make_grid_params(grid, uint32_t(tris), margin, 1, channels);
+        VoxGridParams direct_params = grid_params(uint32_t(tris), 1, channels);
         direct_params.dims[3] = uint32_t(set);
         direct_params.list_capacity = uint32_t(pairs);
         cl_.launch("lists", direct, tris, kGroup, direct_params, mesh.positions(), mesh.triangles(), list,
-                   dummy, occ, ranked, cursors, ids);
+                   dummy, occ, ranked, cursors, ids, bricks);
       }
       raster_listed("lists", 2, list_params, ranked, cursors, ids);
       cl::Kernel sort = cl_.kernel("vox_lists.cl", "list_sort", base);
@@ -266,7 +291,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
 
   stats.triangles = tris;
   stats.copies = copies;
-  stats.work_items = grid_method ? listed * grid.dims.z : stats.direct_triangles + copies;
+  stats.work_items = grid_method ? listed * slices : stats.direct_triangles + copies;
   stats.batches = copies_.batches();
   stats.margin = margin;
   stats.device_bytes += scratch_bytes + copies_.device_bytes();

@@ -17,6 +17,19 @@
 
 namespace voxr {
 
+// A part of a run (the sparse voxelizer's passes, host/voxelize/sparse_voxelizer.h): the slices [first_slice,
+// first_slice + slices) of the grid, written into an `out` whose spec is the window's (GridSpec of `slices`
+// slices) — dense bits, or with `bricks` into out.brick_slots 8^3 brick slots (kernels/voxelize/
+// vox_scanline.h VOX_SPARSE). Voxels are bit for bit those of the same slices of a whole-grid run: the
+// snapped z is shifted by an exact integer and the conservative margin is the whole grid's.
+struct SliceWindow {
+  uint32_t first_slice = 0;
+  uint32_t slices = 0;                 // 0: the whole grid
+  uint32_t extra_margin = 0;           // conservative rule: added to the snap margin (1/VOXR_SUBVOXEL units)
+  const cl::Buffer* bricks = nullptr;  // the brick table: the rank index of the window's brick occupancy
+                                       // (one bit per brick, linear brick order), then one flag word
+};
+
 class SliceVoxelizer final : public SurfaceVoxelizer {
  public:
   // method: kHybrid, kSlice or kGrid.
@@ -25,8 +38,15 @@ class SliceVoxelizer final : public SurfaceVoxelizer {
   std::vector<ProgramSpec> programs(const VoxelizeOptions& options) const override;
   void run(const DeviceMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options, DeviceVoxelGrid& out,
            VoxelizeStats& stats) override;
+  // run() over a window of `grid` (above).
+  void run(const DeviceMesh& mesh, const GridSpec& grid, const VoxelizeOptions& options,
+           const SliceWindow& window, DeviceVoxelGrid& out, VoxelizeStats& stats);
+  // The programs of a run into bricks (VOX_SPARSE).
+  std::vector<ProgramSpec> sparse_programs(const VoxelizeOptions& options) const;
 
  private:
+  std::vector<ProgramSpec> programs_of(const VoxelizeOptions& options, bool sparse) const;
+
   ClRuntime& cl_;
   VoxelizeMethod method_;
   ScratchBuffers scratch_;  // device buffers kept between runs

@@ -54,6 +54,7 @@ inline void vox_snap_triangle(VoxTri* t, const VoxGridParams* grid, __global con
       const float* m = grid->world_to_grid + 4 * a;
       t->v[c][a] = vox_snap(((m[0] * p[c].x + m[1] * p[c].y) + m[2] * p[c].z) + m[3]);
     }
+    t->v[c][2] -= (long)grid->first_slice * VOXR_SUBVOXEL; /* a window's slices (VoxGridParams.first_slice) */
   }
 }
 

@@ -42,6 +42,9 @@ typedef struct VoxGridParams {
                     side, the bound on how far snapping and the float transform move a vertex */
   uint channels; /* attribute pass: the ChannelSet bits to accumulate (host/grid/channel_table.h) */
   uint list_capacity; /* triangle-list pass (VOX_PASS 2): entries of the id array (writes past it dropped) */
+  uint first_slice;   /* a window of a larger grid: dims[2] slices from this one of the grid world_to_grid maps
+                         to; snapped z is taken relative to it (an exact integer shift, so a window's voxels
+                         are bit for bit those of the whole grid's slices) */
 } VoxGridParams;
 
 /* Copy records, the duplication step the slice voxelizer (a triangle's slabs x blocks of rows), the slicemap
@@ -363,7 +366,7 @@ typedef struct RenderCamera {
   SIZE(VoxGridParams)                                                                                    \
   OFFSET(VoxGridParams, world_to_grid) OFFSET(VoxGridParams, dims) OFFSET(VoxGridParams, rows_per_copy)   \
   OFFSET(VoxGridParams, triangle_count) OFFSET(VoxGridParams, margin) OFFSET(VoxGridParams, channels)     \
-  OFFSET(VoxGridParams, list_capacity)                                                                    \
+  OFFSET(VoxGridParams, list_capacity) OFFSET(VoxGridParams, first_slice)                                 \
   SIZE(CopyBox) OFFSET(CopyBox, first) OFFSET(CopyBox, width)                                             \
   SIZE(CopyRecord) OFFSET(CopyRecord, triangle) OFFSET(CopyRecord, cell)                                  \
   SIZE(VoxSnappedTriangle) OFFSET(VoxSnappedTriangle, x) OFFSET(VoxSnappedTriangle, y)                    \

@@ -99,7 +99,7 @@
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
     VoxGridParams grid, __global const float4* positions, __global const uint4* triangles,
     __global uint* large, __global uint* large_count, __global uint* occ, __global const ulong* ranked,
-    __global long* acc, __global uint* material) {
+    __global long* acc, __global uint* material, __global ulong* bricks) {
   const uint index = get_global_id(0);
   if (index >= grid.triangle_count) return;
   const uint4 tri = triangles[index];
@@ -108,9 +108,11 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
   const float4 p0 = positions[tri.x], p1 = positions[tri.y], p2 = positions[tri.z];
   const float* g = grid.world_to_grid;
 #define VOX_SNAP(p, a) vox_snap(((g[4 * a] * p.x + g[4 * a + 1] * p.y) + g[4 * a + 2] * p.z) + g[4 * a + 3])
-  const long x0 = VOX_SNAP(p0, 0), y0 = VOX_SNAP(p0, 1), z0 = VOX_SNAP(p0, 2);
-  const long x1 = VOX_SNAP(p1, 0), y1 = VOX_SNAP(p1, 1), z1 = VOX_SNAP(p1, 2);
-  const long x2 = VOX_SNAP(p2, 0), y2 = VOX_SNAP(p2, 1), z2 = VOX_SNAP(p2, 2);
+  /* z relative to a window's first slice (VoxGridParams.first_slice), as vox_snap_triangle does */
+  const long zs = (long)grid.first_slice * VOXR_SUBVOXEL;
+  const long x0 = VOX_SNAP(p0, 0), y0 = VOX_SNAP(p0, 1), z0 = VOX_SNAP(p0, 2) - zs;
+  const long x1 = VOX_SNAP(p1, 0), y1 = VOX_SNAP(p1, 1), z1 = VOX_SNAP(p1, 2) - zs;
+  const long x2 = VOX_SNAP(p2, 0), y2 = VOX_SNAP(p2, 1), z2 = VOX_SNAP(p2, 2) - zs;
 #undef VOX_SNAP
   const long lo_x = min(x0, min(x1, x2)), lo_y = min(y0, min(y1, y2)), lo_z = min(z0, min(z1, z2));
   const long hi_x = max(x0, max(x1, x2)), hi_y = max(y0, max(y1, y2)), hi_z = max(z0, max(z1, z2));
@@ -145,7 +147,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
   }
 
   VoxWriter w;
-  vox_writer_init(&w, VOX_PASS == 2 ? index : tri.w, &grid, occ, ranked, acc, material);
+  vox_writer_init(&w, VOX_PASS == 2 ? index : tri.w, &grid, occ, ranked, acc, material, bricks);
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
 #if VOX_PASS == 1
   if (grid.channels & VOX_CH_NORMAL)

@@ -12,7 +12,7 @@
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_grid(
     VoxGridParams grid, __global const VoxSnappedTriangle* snapped, uint slab, __global uint* occ,
-    __global const ulong* ranked, __global long* acc, __global uint* material) {
+    __global const ulong* ranked, __global long* acc, __global uint* material, __global ulong* bricks) {
   const uint tri = get_global_id(0);
   if (tri >= grid.triangle_count) return;
   VoxTri t;
@@ -24,7 +24,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_grid(
   VoxRule rule;
   vox_rule_init(&rule, &t, &grid);
   VoxWriter w;
-  vox_writer_init(&w, material_id, &grid, occ, ranked, acc, material);
+  vox_writer_init(&w, material_id, &grid, occ, ranked, acc, material, bricks);
 #if VOX_PASS == 1
   if (grid.channels & VOX_CH_NORMAL) vox_fixed_normal(vox_tri_normal(&t), &w.normal);
 #endif

@@ -13,7 +13,8 @@
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
     VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const CopyRecord* copies, __global const uint* copy_count,
-    __global uint* occ, __global const ulong* ranked, __global long* acc, __global uint* material) {
+    __global uint* occ, __global const ulong* ranked, __global long* acc, __global uint* material,
+    __global ulong* bricks) {
   const uint gid = get_global_id(0);
   if (gid >= *copy_count) return;
   const CopyRecord rec = copies[gid];
@@ -27,7 +28,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
   VoxRule rule;
   vox_rule_init(&rule, &t, &grid);
   VoxWriter w;
-  vox_writer_init(&w, material_id, &grid, occ, ranked, acc, material);
+  vox_writer_init(&w, material_id, &grid, occ, ranked, acc, material, bricks);
 #if VOX_PASS == 1
   if (grid.channels & VOX_CH_NORMAL) vox_fixed_normal(vox_tri_normal(&t), &w.normal);
 #endif

@@ -27,6 +27,15 @@
 #ifndef VOX_PASS
 #define VOX_PASS 0
 #endif
+/* VOX_SPARSE 1: the grid is stored in 8^3 bricks (host/grid/sparse_voxel_grid.h): the kernels still walk
+ * voxels by their dense linear index in the grid (a window of slices, VoxGridParams.first_slice), and
+ * vox_emit maps it to the voxel's bit in its brick's slot: slot * 512 + x + 8 y + 64 z within the brick. The
+ * slots come from `bricks`, the rank index (VOXR_RANKED) of the window's brick occupancy, one bit per brick
+ * in linear brick order (the coarse pass, host/voxelize/sparse_voxelizer.h, marks every brick a voxel can be
+ * set in). A voxel whose brick is not marked sets the flag word after the rank index and is dropped. */
+#ifndef VOX_SPARSE
+#define VOX_SPARSE 0
+#endif
 /* Triangles spanning fewer than this many cells per axis skip the float clipping. */
 #ifndef VOX_SMALL_SPAN
 #define VOX_SMALL_SPAN 3
@@ -107,6 +116,15 @@ typedef struct VoxWriter {
   uint channels; /* pass 1: the channels to accumulate */
   uint entries;  /* passes 1, 2: ranks below it have accumulator and material entries (VoxGridParams.dims[3]) */
   uint list_capacity; /* pass 2: entries of the id array */
+#if VOX_SPARSE
+  __global ulong* bricks; /* the brick table, then the missing-brick flag at [brick_words] */
+  ulong brick_words;
+  uint nx, ny, bdx, bdy;  /* voxels and bricks along x and y */
+  ulong row_lo;           /* linear index of the current row's first voxel */
+  ulong brick_row;        /* linear brick index of the current row's first brick */
+  uint local_row;         /* the row's offset inside its brick: 8 (y & 7) + 64 (z & 7) */
+  ulong brick, slot;      /* the current brick and its slot (~0: not marked) */
+#endif
 } VoxWriter;
 
 inline void vox_flush(VoxWriter* w) {
@@ -119,6 +137,28 @@ inline void vox_flush(VoxWriter* w) {
 }
 
 inline void vox_emit(VoxWriter* w, ulong linear) {
+#if VOX_SPARSE
+  if (linear - w->row_lo >= (ulong)w->nx) { /* a new row: voxels of one row come in runs */
+    const ulong row = linear / w->nx;
+    const ulong k = row / w->ny;
+    const uint j = (uint)(row - k * w->ny);
+    w->row_lo = row * w->nx;
+    w->brick_row = ((k >> 3) * w->bdy + (j >> 3)) * w->bdx;
+    w->local_row = 8u * (j & 7u) + 64u * ((uint)k & 7u);
+    w->brick = ~0UL;
+  }
+  const uint i = (uint)(linear - w->row_lo);
+  const ulong lb = w->brick_row + (i >> 3);
+  if (lb != w->brick) {
+    w->brick = lb;
+    const ulong r = w->bricks[lb >> 5];
+    const uint b = 1u << (uint)(lb & 31);
+    w->slot = (VOXR_RANKED_BITS(r) & b) ? (ulong)VOXR_RANKED_RANK(r) + popcount(VOXR_RANKED_BITS(r) & (b - 1u)) : ~0UL;
+    if (w->slot == ~0UL) atomic_or((__global uint*)(w->bricks + w->brick_words), 1u);
+  }
+  if (w->slot == ~0UL) return;
+  linear = w->slot * 512 + w->local_row + (i & 7u);
+#endif
   const ulong word = linear >> 5;
   const uint bit = 1u << (uint)(linear & 31);
 #if VOX_PASS == 0
@@ -231,7 +271,19 @@ inline void vox_rule_init(VoxRule* r, const VoxTri* t, const VoxGridParams* grid
 /* A writer for one triangle (pass 1 with normals: set w->normal with vox_fixed_normal afterwards;
  * pass 2: `material_id` is the triangle's mesh index). */
 inline void vox_writer_init(VoxWriter* w, uint material_id, const VoxGridParams* grid, __global uint* occ,
-                            __global const ulong* ranked, __global long* acc, __global uint* material) {
+                            __global const ulong* ranked, __global long* acc, __global uint* material,
+                            __global ulong* bricks) {
+#if VOX_SPARSE
+  w->bricks = bricks;
+  w->nx = grid->dims[0];
+  w->ny = grid->dims[1];
+  w->bdx = (grid->dims[0] + 7u) >> 3;
+  w->bdy = (grid->dims[1] + 7u) >> 3;
+  w->brick_words = ((ulong)w->bdx * w->bdy * ((grid->dims[2] + 7u) >> 3) + 31u) >> 5;
+  w->row_lo = 0UL - (ulong)w->nx; /* no row yet: linear - row_lo >= nx for every voxel */
+  w->brick = ~0UL;
+  w->slot = ~0UL;
+#endif
   w->occ = occ;
   w->ranked = ranked;
   w->acc = acc;
