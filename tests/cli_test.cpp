@@ -112,7 +112,44 @@ TEST(Cli, ZeroResolution) {
 
 TEST(Cli, AbsurdSizeExceedsMemory) {
   const fs::path p = write_file("tetra3.obj", kTetra);
-  expect_one_line_error(run("voxelize " + p.string() + " --dims 16384,16384,16384"), "MiB");
+  expect_one_line_error(run("voxelize " + p.string() + " --dims 16384,16384,16384 --layout dense"), "MiB");
+}
+
+TEST(Cli, SparseLayoutWritesWhatDenseWritesAndReportsItsMemory) {
+  const fs::path mesh = write_file("tetra-sparse.obj", kTetra);
+  std::string files[2];
+  int i = 0;
+  for (const char* layout : {"dense", "sparse"}) {
+    const fs::path out = scratch() / fmt::format("tetra-{}.vti", layout);
+    const fs::path report = scratch() / fmt::format("tetra-{}.json", layout);
+    // A 1 MiB budget cuts the 200^3 grid into slabs.
+    const Result r =
+        run("voxelize " + mesh.string() + " --res 200 --channels occ,count,normal,material --layout " +
+            layout + " --memory-budget 1M -o " + out.string() + " --report " + report.string());
+    ASSERT_EQ(r.code, 0) << r.err;
+    files[i++] = slurp(out);
+    const nlohmann::json j = nlohmann::json::parse(slurp(report));
+    EXPECT_EQ(j["layout"], layout);
+    if (std::string(layout) == "sparse") {
+      EXPECT_GT(j["sparse"]["slabs"].get<int>(), 1);
+      EXPECT_GT(j["sparse"]["bricks"].get<uint64_t>(), 0u);
+      EXPECT_GE(j["sparse"]["bricks_marked"].get<uint64_t>(), j["sparse"]["bricks"].get<uint64_t>());
+      EXPECT_GT(j["sparse"]["peak_device_bytes"].get<uint64_t>(), 0u);
+      EXPECT_NE(r.out.find("layout     sparse"), std::string::npos) << r.out;
+    }
+  }
+  EXPECT_FALSE(files[0].empty());
+  EXPECT_TRUE(files[0] == files[1]) << "the sparse run's .vti differs from the dense run's";
+}
+
+TEST(Cli, LayoutAndBudgetMistakesAreOneLineErrors) {
+  const fs::path p = write_file("tetra-layout.obj", kTetra);
+  expect_one_line_error(run("voxelize " + p.string() + " --layout bricks"), "--layout 'bricks'");
+  expect_one_line_error(run("voxelize " + p.string() + " --memory-budget 12X"), "unknown unit");
+  expect_one_line_error(run("voxelize " + p.string() + " --memory-budget lots"), "--memory-budget 'lots'");
+  expect_one_line_error(run("voxelize " + p.string() + " --memory-budget 10K"), "at least 1M");
+  expect_one_line_error(run("voxelize " + p.string() + " --layout sparse --solid parity"), "--layout dense");
+  expect_one_line_error(run("voxelize " + p.string() + " --layout sparse --method slicemap"), "slicemap");
 }
 
 TEST(Cli, BadChannelModeAndExtension) {

@@ -202,6 +202,9 @@ nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const 
         {"bricks", sparse->bricks_kept},
         {"memory_budget", sparse->memory_budget},
         {"peak_device_bytes", sparse->peak_device_bytes},
+        {"peak_grid_bytes", sparse->peak_grid_bytes},
+        {"grid_bytes_per_voxel",
+         stats.voxels_set ? double(sparse->peak_grid_bytes) / double(stats.voxels_set) : 0.0},
         {"device_bytes_per_voxel",
          stats.voxels_set ? double(sparse->peak_device_bytes) / double(stats.voxels_set) : 0.0},
         {"host_bytes_per_voxel", stats.voxels_set ? double(host_bytes) / double(stats.voxels_set) : 0.0}};
@@ -436,12 +439,15 @@ int run_voxelize(const VoxelizeArgs& args) {
                  stats.questionable_columns, stats.flood_iterations);
     if (sparse_stats)
       fmt::print(
-          "layout     sparse: {} bricks of 8^3 ({} marked), {} slab(s) under a {:.0f} MiB budget; {:.1f} MiB "
-          "on the "
-          "device at most ({:.2f} B per set voxel), {:.1f} MiB on the host ({:.2f} B per set voxel)\n",
+          "layout     sparse: {} bricks of 8^3 ({} marked), {} slab(s) under a {:.0f} MiB budget; on the "
+          "device at "
+          "most {:.1f} MiB, of which grid {:.1f} MiB ({:.2f} B per set voxel); {:.1f} MiB on the host "
+          "({:.2f} B per "
+          "set voxel)\n",
           sparse_stats->bricks_kept, sparse_stats->bricks_marked, sparse_stats->slabs,
           double(sparse_stats->memory_budget) / (1 << 20), double(stats.device_bytes) / (1 << 20),
-          double(stats.device_bytes) / double(std::max<uint64_t>(stats.voxels_set, 1)),
+          double(sparse_stats->peak_grid_bytes) / (1 << 20),
+          double(sparse_stats->peak_grid_bytes) / double(std::max<uint64_t>(stats.voxels_set, 1)),
           double(host_bytes) / (1 << 20),
           double(host_bytes) / double(std::max<uint64_t>(stats.voxels_set, 1)));
     else

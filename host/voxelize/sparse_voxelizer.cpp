@@ -167,9 +167,10 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
       local.work_items += fine_stats.work_items;
       local.batches += fine_stats.batches;
       local.margin = fine_stats.margin;
-      sparse.peak_device_bytes =
-          std::max(sparse.peak_device_bytes, brick_grid_.device_bytes() + slots_.device_bytes() +
-                                                 fine_stats.device_bytes + coarse_stats.device_bytes);
+      const uint64_t grid_bytes = brick_grid_.device_bytes() + slots_.device_bytes();
+      sparse.peak_grid_bytes = std::max(sparse.peak_grid_bytes, grid_bytes);
+      sparse.peak_device_bytes = std::max(sparse.peak_device_bytes,
+                                          grid_bytes + fine_stats.device_bytes + coarse_stats.device_bytes);
       // 4. read back: the slab's brick bits, its slots and channels.
       progress("readback");
       cl_ulong missing = 0;

@@ -35,8 +35,9 @@ struct SparseStats {
   uint64_t slabs = 0;
   uint64_t bricks_marked = 0;      // by the coarse pass
   uint64_t bricks_kept = 0;        // holding at least one set voxel
-  uint64_t peak_device_bytes = 0;  // the largest slab's grid buffers (brick table, slots, channels, scratch)
-  uint64_t memory_budget = 0;      // the budget the slabs were sized by
+  uint64_t peak_device_bytes = 0;  // the largest slab's buffers: grid (below) and the passes' scratch
+  uint64_t peak_grid_bytes = 0;  // the largest slab's grid: brick table, slots and their rank index, channels
+  uint64_t memory_budget = 0;    // the budget the slabs were sized by
 };
 
 // The device memory a sparse run may use when the user gives no budget: a quarter of the device's memory,
