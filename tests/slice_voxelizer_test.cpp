@@ -36,6 +36,38 @@ TEST(SliceVoxelizer, RandomSoupCenterEqualsReference) {
   expect_matches_reference(soup, test::fitted(soup, 48), RasterMode::kCenter);
 }
 
+// Triangles spanning 9..16 cells per axis, the direct pass's widest (kernels/voxelize/vox_direct.cl: its
+// 32-bit edge axes are proven exact up to 16), in both rules, against the reference.
+TEST(SliceVoxelizer, DirectPassAtItsWidestSpansEqualsReference) {
+  const TriangleSoup soup = test::random_soup(23, 300, -1.0f, 1.0f, 0.45f);
+  const GridSpec grid = test::fitted(soup, 64);
+  // The soup reaches that range: triangles whose widest cell range is 9..16 (the old limit was 8).
+  int wide = 0;
+  for (const glm::uvec4& t : soup.triangles) {
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (uint32_t v : {t.x, t.y, t.z}) {
+      const glm::vec3 g = grid.to_grid(glm::vec3(soup.positions[v]));
+      lo = glm::min(lo, g);
+      hi = glm::max(hi, g);
+    }
+    const glm::vec3 span = glm::floor(hi) - glm::floor(lo) + 1.0f;
+    const float widest = std::max(span.x, std::max(span.y, span.z));
+    wide += widest > 8.0f && widest <= 16.0f && span.x * span.y * span.z <= 1024.0f;
+  }
+  EXPECT_GT(wide, 30);
+  for (RasterMode mode : {RasterMode::kConservative, RasterMode::kCenter}) {
+    Voxelizer voxelizer(test::runtime());
+    VoxelizeOptions options;
+    options.mode = mode;
+    options.channels = ChannelSet::parse("occ,count,normal,material");
+    VoxelizeStats stats;
+    const VoxelGrid actual = voxelizer.run(soup, grid, options, &stats);
+    EXPECT_GT(stats.direct_triangles, uint64_t(wide));  // those take the direct pass
+    EXPECT_EQ(test::compare_grids(reference_voxelize(soup, grid, mode, options.channels), actual), "")
+        << raster_mode_name(mode);
+  }
+}
+
 TEST(SliceVoxelizer, LargeTrianglesUseClippingAndStayExact) {
   const TriangleSoup soup = test::random_soup(3, 60, -1.0f, 1.0f, 2.0f);
   for (RasterMode mode : {RasterMode::kConservative, RasterMode::kCenter})

@@ -4,7 +4,7 @@
 //
 // Methods (the surface set; every method gives occ, the slice family also count, normal, material):
 //   hybrid    default: small triangles voxelized directly, one work item each (vox_direct.cl, Schwarz &
-//             Seidel 2010 §3's triangle-parallel pass); triangles whose cell range exceeds 8 per axis or 64
+//             Seidel 2010 §3's triangle-parallel pass); triangles whose cell range exceeds 16 per axis or 1024
 //             in all take the papers' slice duplication below. Same voxels as `slice`.
 //   slice     Chang & Lai (TR 1688, PG 2011): every triangle duplicated once per slab and block of rows
 //             (vox_setup -> scan -> expand_copies, the geometry shader's duplication) and

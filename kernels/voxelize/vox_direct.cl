@@ -8,8 +8,9 @@
  *
  * Conservative mode has a dedicated form of the 13-axis test for speed on CPUs: scalar variables only (a
  * private array costs a work-group-sized context array on PoCL), the nine edge axes in 32-bit integers
- * (exact: coordinates are taken relative to the triangle's first cell, so they stay below 2^12 and every
- * product below 2^26) and the normal axis in 64-bit. Centre mode uses vox_scan_slab.
+ * (exact: coordinates are taken relative to the triangle's first cell, so for spans of at most 16 cells and
+ * margins of at most 64 units they stay below 2^13, every product below 2^26, an axis value with its steps
+ * below 2^29) and the normal axis in 64-bit. Centre mode uses vox_scan_slab.
  * in:  positions (float4), triangles (uint4: indices, material); pass 1 also the ranked occupancy words
  * out: pass 0: occupancy bits, large[] and large_count (the triangles left to the slice path, in any order);
  *      pass 1: the attribute accumulators of the small triangles' voxels; pass 2: their triangle lists
@@ -19,15 +20,18 @@
 #ifndef WG_SIZE
 #define WG_SIZE 64
 #endif
-/* Limits of the direct path: cells per axis (the 32-bit bounds above assume at most 8) and in all. */
+/* Limits of the direct path: cells per axis (the 32-bit bounds above assume at most 16) and in all. A
+ * triangle of up to 16 x 16 x 4 cells is cheaper here than as 10-40 copies of the slice path (each copy sets
+ * up the 13 axes in 64-bit and clips in float): at 4096^3, where a 1.1 M-triangle mesh's triangles span about
+ * 10 cells, this took the kernels from 8.2 s to 2.8 s on PoCL (bench/results/issue21-sparse-pocl-2core.md). */
 #ifndef VOX_DIRECT_SPAN
-#define VOX_DIRECT_SPAN 8
+#define VOX_DIRECT_SPAN 16
 #endif
 #ifndef VOX_DIRECT_CELLS
-#define VOX_DIRECT_CELLS 64
+#define VOX_DIRECT_CELLS 1024
 #endif
-#if VOX_DIRECT_SPAN > 8
-#error "the direct pass's 32-bit edge axes are proven exact for spans of at most 8 cells"
+#if VOX_DIRECT_SPAN > 16
+#error "the direct pass's 32-bit edge axes are proven exact for spans of at most 16 cells"
 #endif
 /* Widest conservative margin (1/VOXR_SUBVOXEL units) the 32-bit bounds allow. */
 #define VOX_DIRECT_MAX_MARGIN 64
