@@ -2,10 +2,14 @@
 // ASCII or binary of either byte order. Every property is read by its declared type, in declared order, so
 // a face element may hold any properties before or after its index list; the vertex element gives x, y, z
 // of any scalar type and the face element a list named vertex_indices (or vertex_index) of any integer type.
+// Colour: red, green, blue and optional alpha on the vertex element (vertex colours) or the face element
+// (face colours, one look per distinct colour), integers 0..255 or floats in [0, 1].
 #include <algorithm>
 #include <cstring>
+#include <unordered_map>
 
 #include "mesh/mesh_readers.h"
+#include "mesh/texture_reader.h"
 #include "util/text_scan.h"
 
 namespace voxr {
@@ -235,6 +239,16 @@ Header read_header(const std::string& name, std::string_view bytes) {
   return h;
 }
 
+// A colour component as a byte: integer types hold 0..255, floating-point ones [0, 1].
+uint32_t colour_byte(const BodyReader& r, PlyType t, double v) {
+  if (is_float(t)) {
+    if (!(v >= 0.0 && v <= 1.0)) r.fault(fmt::format("colour value {} is not in [0, 1]", v));
+    return unit_to_byte(v);
+  }
+  if (v < 0.0 || v > 255.0) r.fault(fmt::format("colour value {} is not in 0..255", v));
+  return uint32_t(v);
+}
+
 // Index of the property named `wanted` in `e`, or -1.
 int find_property(const PlyElement& e, std::initializer_list<std::string_view> wanted) {
   for (size_t i = 0; i < e.properties.size(); ++i)
@@ -281,21 +295,47 @@ PolygonMesh read_ply(const std::string& name, std::string_view bytes) {
   mesh.positions.reserve(std::min(vertices, body.size() / 3));
   BodyReader r(name, body, h.format, h.lines + 1);
   std::vector<uint32_t> corners;
+  // Face colours become looks, one per distinct colour in order of first use.
+  std::unordered_map<uint32_t, uint32_t> look_of_colour;
   for (const PlyElement& e : h.elements) {
     // An element without properties takes no bytes, whatever count the header gives it (up to 2^64 - 1).
     if (e.properties.empty()) continue;
     const bool is_vertex = &e == &*vertex_element, is_face = e.name == "face";
     const int index_list = is_face ? find_property(e, {"vertex_indices", "vertex_index"}) : -1;
+    // What each scalar property is: a coordinate (0..2), a colour component (3..6: red, green, blue,
+    // alpha; only when red, green and blue are all there), or nothing (-1).
+    std::vector<int> role(e.properties.size(), -1);
+    if (is_vertex)
+      for (int c = 0; c < 3; ++c) role[size_t(xyz[c])] = c;
+    bool coloured = false;
+    if (is_vertex || is_face) {
+      const int rgba[4] = {
+          find_property(e, {"red", "diffuse_red", "r"}), find_property(e, {"green", "diffuse_green", "g"}),
+          find_property(e, {"blue", "diffuse_blue", "b"}), find_property(e, {"alpha", "diffuse_alpha", "a"})};
+      coloured = rgba[0] >= 0 && rgba[1] >= 0 && rgba[2] >= 0;
+      for (int c = 0; c < 4 && coloured; ++c)
+        if (rgba[c] >= 0) {
+          if (e.properties[size_t(rgba[c])].list())
+            fail("{}: element '{}' property '{}' is a list; a colour component must be a scalar", name,
+                 e.name, e.properties[size_t(rgba[c])].name);
+          role[size_t(rgba[c])] = 3 + c;
+        }
+    }
+    if (coloured && is_vertex) mesh.vertex_rgba.reserve(mesh.positions.capacity());
     for (size_t i = 0; i < e.count; ++i) {
       glm::dvec3 p(0.0);
+      uint32_t colour[4] = {255, 255, 255, 255};
       for (size_t k = 0; k < e.properties.size(); ++k) {
         const PlyProperty& prop = e.properties[k];
         r.at(e, i, prop);
         if (!prop.list()) {
           const double v = r.value(prop.type);
-          if (is_vertex)
-            for (int c = 0; c < 3; ++c)
-              if (xyz[c] == int(k)) p[c] = r.finite(v);
+          const int what = role[k];
+          if (what >= 3) {
+            colour[what - 3] = colour_byte(r, prop.type, v);
+          } else if (what >= 0) {
+            p[what] = r.finite(v);
+          }
           continue;
         }
         const uint64_t n = r.count(prop.count_type);
@@ -314,9 +354,19 @@ PolygonMesh read_ply(const std::string& name, std::string_view bytes) {
         mesh.add_face(corners.data(), uint32_t(n));
       }
       r.end_row();
-      if (is_vertex) mesh.positions.push_back(p);
+      if (is_vertex) {
+        mesh.positions.push_back(p);
+        if (coloured) mesh.vertex_rgba.push_back(pack_rgba(colour[0], colour[1], colour[2], colour[3]));
+      } else if (is_face && coloured) {
+        const uint32_t rgba = pack_rgba(colour[0], colour[1], colour[2], colour[3]);
+        const auto [look, added] = look_of_colour.try_emplace(rgba, uint32_t(mesh.looks.size()));
+        if (added) mesh.looks.push_back(MeshLook{rgba, -1});
+        mesh.face_looks.push_back(look->second);
+      }
     }
   }
+  // One face colour for every face: one look, no per-face list (triangle_soup.h: look 0 for every triangle).
+  if (mesh.looks.size() == 1) mesh.face_looks.clear();
   return mesh;
 }
 
