@@ -279,7 +279,8 @@ const char* kObj =
     "usemtl textured\n"
     "f 1/1 2/2 3/3\n"
     "usemtl plain\n"
-    "f 2/4 4/4 3/4\n";
+    "f 2/4 4/4 3/4\n"
+    "f 1 2 3\n";
 
 TEST(MeshColors, ObjMtlTextureAndVertexColours) {
   TempDir dir;
@@ -289,16 +290,18 @@ TEST(MeshColors, ObjMtlTextureAndVertexColours) {
   write_png(dir, "tex dir/tex.png");
   const TriangleSoup soup = load_mesh(dir.write("m.obj", kObj));
   const SoupColors& c = soup.colors;
-  // Vertices 2 and 3 carry two UVs each: copies 4 and 5 are appended for their second one.
-  ASSERT_EQ(soup.vertex_count(), 6u);
+  // Vertices 2 and 3 carry two UVs each: copies 4 and 5 are appended for their second one; the corners of
+  // the last face have no vt, unlike each vertex's first corner: copies 6, 7, 8 with UV (0, 0).
+  ASSERT_EQ(soup.vertex_count(), 9u);
   EXPECT_EQ(soup.positions[4], soup.positions[1]);
   EXPECT_EQ(soup.positions[5], soup.positions[2]);
-  EXPECT_EQ(vec(soup.triangles), (std::vector<glm::uvec4>{{0, 1, 2, 0}, {4, 3, 5, 1}}));
-  EXPECT_EQ(vec(c.vertex_rgba), (std::vector<uint32_t>{rgba(255, 0, 0), rgba(0, 255, 0), rgba(0, 0, 255),
-                                                       kWhite, rgba(0, 255, 0), rgba(0, 0, 255)}));
+  EXPECT_EQ(vec(soup.triangles), (std::vector<glm::uvec4>{{0, 1, 2, 0}, {4, 3, 5, 1}, {6, 7, 8, 1}}));
+  const uint32_t r = rgba(255, 0, 0), g = rgba(0, 255, 0), b = rgba(0, 0, 255);
+  EXPECT_EQ(vec(c.vertex_rgba), (std::vector<uint32_t>{r, g, b, kWhite, g, b, r, g, b}));
   EXPECT_EQ(vec(c.vertex_uv),
-            (std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}, {0.5f, 0.5f}, {0.5f, 0.5f}, {0.5f, 0.5f}}));
-  EXPECT_EQ(vec(c.triangle_look), (std::vector<uint32_t>{0, 1}));
+            (std::vector<glm::vec2>{
+                {0, 0}, {1, 0}, {0, 1}, {0.5f, 0.5f}, {0.5f, 0.5f}, {0.5f, 0.5f}, {0, 0}, {0, 0}, {0, 0}}));
+  EXPECT_EQ(vec(c.triangle_look), (std::vector<uint32_t>{0, 1, 1}));
   ASSERT_EQ(c.looks.size(), 2u);
   EXPECT_EQ(c.looks[0].factor_rgba, kWhite);
   EXPECT_EQ(c.looks[0].texture, 0);
