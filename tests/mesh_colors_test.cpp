@@ -11,6 +11,7 @@
 
 #include "core/mesh_loader.h"
 #include "core/mesh_topology.h"
+#include "core/scene.h"
 #include "core/subdivide.h"
 #include "mesh/texture_reader.h"
 #include "test_support.h"
@@ -546,6 +547,35 @@ TEST(MeshColors, SubdivideAndDuplicateRemovalKeepColours) {
   EXPECT_EQ(drop_duplicate_triangles(s), 1u);
   EXPECT_EQ(vec(s.colors.triangle_look), (std::vector<uint32_t>{1, 4}));
   EXPECT_EQ(validate_soup(s, "s"), 0u);
+}
+
+TEST(MeshColors, ScenesKeepColoursOfEachMesh) {
+  TempDir dir;
+  dir.write("c.off", "COFF\n3 1 0\n0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n");
+  dir.write("f.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0 0 255\n");
+  const std::string meshes =
+      R"("meshes": [{"generator": "box"}, {"file": "c.off", "transform": {"scale": [-1, 2, 1]}},
+                    {"file": "f.off")";
+  for (const char* animation :
+       {"}]", R"(, "animation": {"keys": [{"time": 0}, {"time": 1, "translate": [1, 0, 0]}]}}])"}) {
+    SCOPED_TRACE(animation);
+    const Scene scene = load_scene(dir.write("s.json", std::string("{") + meshes + animation + "}"));
+    const TriangleSoup soup = scene_triangles(scene);
+    const size_t box = scene.meshes[0].soup.vertex_count(),
+                 box_triangles = scene.meshes[0].soup.triangle_count();
+    ASSERT_EQ(soup.vertex_count(), box + 6);
+    std::vector<uint32_t> want(box, kWhite);
+    for (uint32_t c : {rgba(255, 0, 0), rgba(0, 255, 0), rgba(0, 0, 255), kWhite, kWhite, kWhite})
+      want.push_back(c);
+    EXPECT_EQ(vec(soup.colors.vertex_rgba), want);
+    std::vector<uint32_t> looks(box_triangles + 1, 0u);
+    looks.push_back(1u);  // white look 0 for the meshes before the first with looks
+    EXPECT_EQ(vec(soup.colors.triangle_look), looks);
+    ASSERT_EQ(soup.colors.looks.size(), 2u);
+    EXPECT_EQ(soup.colors.looks[0].factor_rgba, kWhite);
+    EXPECT_EQ(soup.colors.looks[1].factor_rgba, rgba(0, 0, 255));
+    EXPECT_EQ(validate_soup(soup, "s.json"), 0u);
+  }
 }
 
 }  // namespace
