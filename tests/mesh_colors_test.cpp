@@ -406,6 +406,8 @@ TEST(MeshColors, GltfExternalTexture) {
   TempDir dir;
   write_png(dir, "tex.png");
   expect_gltf_colours(load_mesh(dir.write("t.gltf", gltf_triangle("tex.png"))));
+  // A path from another machine: the file name beside the mesh.
+  expect_gltf_colours(load_mesh(dir.write("w.gltf", gltf_triangle("textures/old/tex.png"))));
   fs::remove(dir.path() / "tex.png");
   const fs::path p = dir.path() / "t.gltf";
   const std::string m = error_of([&] { load_mesh(p); });

@@ -141,7 +141,14 @@ MeshTexture material_texture(const std::string& name, const aiScene& scene, cons
   }
   std::string relative = path;
   std::replace(relative.begin(), relative.end(), '\\', '/');
-  return read_texture(fs::path(name).parent_path() / relative, name);
+  const fs::path folder = fs::path(name).parent_path();
+  fs::path file = folder / relative;
+  // FBX and Collada files often keep the absolute path of the machine that wrote them: the file name
+  // beside the mesh is tried next.
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec) && fs::is_regular_file(folder / fs::path(relative).filename(), ec))
+    file = folder / fs::path(relative).filename();
+  return read_texture(file, name);
 }
 
 // Each material's look: the base colour factor (AI_MATKEY_BASE_COLOR, else COLOR_DIFFUSE with OPACITY as
