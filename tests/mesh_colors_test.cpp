@@ -367,24 +367,40 @@ TEST(MeshColors, ObjErrors) {
 
 // A glTF of one triangle with COLOR_0, TEXCOORD_0 and a material with a base colour factor and texture
 // `image_uri`.
-std::string gltf_triangle(const std::string& image_uri) {
+// `glb_png` empty: glTF JSON whose image is `image_uri`, the buffer a data URI; else a GLB whose binary
+// chunk holds the geometry and then `glb_png`, the image a bufferView of it.
+std::string gltf_triangle(const std::string& image_uri, const std::string& glb_png = "") {
   std::string bin;
   auto f32 = [&](float v) { bin.append(reinterpret_cast<const char*>(&v), 4); };
   for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) f32(v);                 // POSITION, 36 bytes
   for (float v : {1.f, 0.f, 0.f, 1.f, 0.f, 1.f, 0.f, .5f, 0.f, 0.f, 1.f, 0.f}) f32(v);  // COLOR_0, 48
   for (float v : {.25f, .25f, 1.f, 0.f, 0.f, 1.f}) f32(v);                              // TEXCOORD_0, 24
-  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+  const bool glb = !glb_png.empty();
+  const std::string image =
+      glb ? R"({"bufferView":3,"mimeType":"image/png"})" : R"({"uri":")" + image_uri + R"("})";
+  const std::string image_view =
+      glb ? R"(,{"buffer":0,"byteOffset":108,"byteLength":)" + std::to_string(glb_png.size()) + "}" : "";
+  if (glb) bin += glb_png;
+  while (bin.size() % 4) bin += '\0';
+  const std::string buffer =
+      glb ? R"({"byteLength":)" + std::to_string(bin.size()) + "}"
+          : R"({"byteLength":108,"uri":"data:application/octet-stream;base64,)" + base64(bin) + R"("})";
+  std::string json = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
 "meshes":[{"primitives":[{"attributes":{"POSITION":0,"COLOR_0":1,"TEXCOORD_0":2},"material":0}]}],
 "materials":[{"pbrMetallicRoughness":{"baseColorFactor":[1,0.5,0.25,1],"baseColorTexture":{"index":0}}}],
-"textures":[{"source":0}],"images":[{"uri":")" +
-         image_uri + R"("}],
-"buffers":[{"byteLength":108,"uri":"data:application/octet-stream;base64,)" +
-         base64(bin) + R"("}],
+"textures":[{"source":0}],"images":[)" +
+                     image + R"(],"buffers":[)" + buffer + R"(],
 "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":48},
-{"buffer":0,"byteOffset":84,"byteLength":24}],
+{"buffer":0,"byteOffset":84,"byteLength":24})" +
+                     image_view + R"(],
 "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
 {"bufferView":1,"componentType":5126,"count":3,"type":"VEC4"},
 {"bufferView":2,"componentType":5126,"count":3,"type":"VEC2"}]})";
+  if (!glb) return json;
+  while (json.size() % 4) json += ' ';
+  auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  return "glTF" + u32(2) + u32(uint32_t(12 + 8 + json.size() + 8 + bin.size())) + u32(uint32_t(json.size())) +
+         "JSON" + json + u32(uint32_t(bin.size())) + std::string("BIN\0", 4) + bin;
 }
 
 void expect_gltf_colours(const TriangleSoup& soup) {
@@ -421,6 +437,13 @@ TEST(MeshColors, GltfEmbeddedTexture) {
   const TriangleSoup soup =
       load_mesh(dir.write("e.gltf", gltf_triangle("data:image/png;base64," + base64(png))));
   expect_gltf_colours(soup);
+  ASSERT_EQ(soup.colors.textures.size(), 1u);
+  EXPECT_NE(soup.colors.textures[0].source.find("(embedded texture '*0')"), std::string::npos);
+  // GLB: the image in a bufferView of the binary chunk.
+  const TriangleSoup glb = load_mesh(dir.write("e.glb", gltf_triangle("", png)));
+  expect_gltf_colours(glb);
+  ASSERT_EQ(glb.colors.textures.size(), 1u);
+  EXPECT_NE(glb.colors.textures[0].source.find("(embedded texture '*0')"), std::string::npos);
 }
 
 // ---- soup operations ----
