@@ -211,6 +211,52 @@ TEST(MeshColors, PlyColourOutOfRange) {
   EXPECT_NE(m.find("property 'green': colour value 1.5 is not in [0, 1]"), std::string::npos) << m;
 }
 
+TEST(MeshColors, PlyTextureFileWithVertexAndCornerUvs) {
+  TempDir dir;
+  write_png(dir, "t.png");
+  const std::string head =
+      "ply\nformat ascii 1.0\ncomment TextureFile t.png\nelement vertex 4\nproperty float x\n"
+      "property float y\nproperty float z\n";
+  // Per vertex.
+  TriangleSoup soup = load_mesh(dir.write(
+      "v.ply",
+      head + "property float s\nproperty float t\nelement face 1\nproperty list uchar int vertex_indices\n"
+             "end_header\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n1 1 0 1 1\n3 0 1 2\n"));
+  EXPECT_EQ(vec(soup.colors.vertex_uv), (std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}, {1, 1}}));
+  ASSERT_EQ(soup.colors.looks.size(), 1u);
+  EXPECT_EQ(soup.colors.looks[0].factor_rgba, kWhite);
+  EXPECT_EQ(soup.colors.looks[0].texture, 0);
+  ASSERT_EQ(soup.colors.textures.size(), 1u);
+  EXPECT_EQ(soup.colors.textures[0].texels, std::vector<uint32_t>(kTexels, kTexels + 4));
+  // Per corner (MeshLab's texcoord): vertex 1 carries two different UVs and is split.
+  soup = load_mesh(dir.write("c.ply", head + "element face 2\nproperty list uchar int vertex_indices\n"
+                                             "property list uchar float texcoord\nend_header\n"
+                                             "0 0 0\n1 0 0\n0 1 0\n1 1 0\n"
+                                             "3 0 1 2 6 0 0 0.5 0 0 1\n3 1 3 2 6 1 0 1 1 0 1\n"));
+  EXPECT_EQ(vec(soup.triangles), (std::vector<glm::uvec4>{{0, 1, 2, 0}, {4, 3, 2, 0}}));
+  EXPECT_EQ(vec(soup.colors.vertex_uv), (std::vector<glm::vec2>{{0, 0}, {0.5f, 0}, {0, 1}, {1, 1}, {1, 0}}));
+  EXPECT_EQ(soup.positions[4], soup.positions[1]);
+  EXPECT_EQ(validate_soup(soup, "c.ply"), 0u);
+  // Errors: a missing texture names the header line; texcoord must pair with the corners.
+  const fs::path missing = dir.write("m.ply",
+                                     "ply\nformat ascii 1.0\ncomment TextureFile gone.png\n"
+                                     "element vertex 3\nproperty float x\nproperty float y\n"
+                                     "property float z\nelement face 1\n"
+                                     "property list uchar int vertex_indices\nend_header\n"
+                                     "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  std::string m = error_of([&] { load_mesh(missing); });
+  expect_one_line(m, missing.string() + ": line 3: texture");
+  const fs::path odd = dir.write("o.ply", head +
+                                              "element face 1\nproperty list uchar int vertex_indices\n"
+                                              "property list uchar float texcoord\nend_header\n"
+                                              "0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2 4 0 0 1 0\n");
+  m = error_of([&] { load_mesh(odd); });
+  expect_one_line(m, odd.string());
+  EXPECT_NE(m.find("face 0 of 1, property 'texcoord': 2 texture coordinate pairs for 3 corners"),
+            std::string::npos)
+      << m;
+}
+
 // ---- OFF ----
 
 TEST(MeshColors, CoffIntegerAndFloatColours) {

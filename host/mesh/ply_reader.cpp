@@ -3,9 +3,15 @@
 // a face element may hold any properties before or after its index list; the vertex element gives x, y, z
 // of any scalar type and the face element a list named vertex_indices (or vertex_index) of any integer type.
 // Colour: red, green, blue and optional alpha on the vertex element (vertex colours) or the face element
-// (face colours, one look per distinct colour), integers 0..255 or floats in [0, 1].
+// (face colours, one look per distinct colour), integers 0..255 or floats in [0, 1]. With MeshLab's
+// `comment TextureFile NAME` (relative to the file): its texture for every face, sampled at texture
+// coordinates per vertex (s t, u v, texture_u texture_v) or per face corner (a `texcoord` list of u v pairs;
+// vertices whose corners differ are split).
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
+#include <map>
+#include <tuple>
 #include <unordered_map>
 
 #include "mesh/mesh_readers.h"
@@ -176,6 +182,8 @@ struct Header {
   std::vector<PlyElement> elements;
   size_t bytes = 0;  // up to and including the end_header line
   size_t lines = 0;
+  std::string texture_file;  // `comment TextureFile NAME` (MeshLab's), relative to the PLY file
+  size_t texture_line = 0;
 };
 
 Header read_header(const std::string& name, std::string_view bytes) {
@@ -190,6 +198,11 @@ Header read_header(const std::string& name, std::string_view bytes) {
     text::split(line, 0, tokens);
     if (number == 1 && (tokens.size() != 1 || tokens[0] != "ply"))
       fail("{}: line 1: a PLY file starts with the line 'ply'", name);
+    if (tokens.size() >= 3 && tokens[0] == "comment" && tokens[1] == "TextureFile") {
+      h.texture_file =
+          std::string(tokens[2].data(), tokens.back().data() + tokens.back().size() - tokens[2].data());
+      h.texture_line = number;
+    }
     if (tokens.empty() || number == 1 || tokens[0] == "comment" || tokens[0] == "obj_info") continue;
     if (tokens[0] == "format") {
       if (tokens.size() < 2) fail("{}: line {}: a format line reads 'format TYPE 1.0'", name, number);
@@ -249,6 +262,35 @@ uint32_t colour_byte(const BodyReader& r, PlyType t, double v) {
   return uint32_t(v);
 }
 
+// Gives every vertex the texture coordinates of its corners (`corner_uv`, parallel to mesh.indices): a vertex
+// whose corners carry different ones is split, its first corner's keeping the vertex and each other value a
+// copy (position and colour) appended at the end.
+void split_corner_uvs(const std::string& name, PolygonMesh& mesh, const std::vector<glm::vec2>& corner_uv) {
+  const size_t original = mesh.positions.size();
+  std::vector<bool> seen(original, false);
+  mesh.vertex_uv.assign(original, glm::vec2(0.0f));
+  std::map<std::tuple<uint32_t, float, float>, uint32_t> copies;
+  for (size_t i = 0; i < mesh.indices.size(); ++i) {
+    const uint32_t v = mesh.indices[i];
+    const glm::vec2 uv = corner_uv[i] + glm::vec2(0.0f);  // -0 as +0
+    if (!seen[v]) {
+      seen[v] = true;
+      mesh.vertex_uv[v] = uv;
+      continue;
+    }
+    if (mesh.vertex_uv[v] == uv) continue;
+    const auto [it, added] = copies.try_emplace({v, uv.x, uv.y}, uint32_t(mesh.positions.size()));
+    if (added) {
+      if (mesh.positions.size() >= (size_t(1) << 31))
+        fail("{}: more vertices than voxr can index after splitting them at texture seams", name);
+      mesh.positions.push_back(mesh.positions[v]);
+      if (!mesh.vertex_rgba.empty()) mesh.vertex_rgba.push_back(mesh.vertex_rgba[v]);
+      mesh.vertex_uv.push_back(uv);
+    }
+    mesh.indices[i] = it->second;
+  }
+}
+
 // Index of the property named `wanted` in `e`, or -1.
 int find_property(const PlyElement& e, std::initializer_list<std::string_view> wanted) {
   for (size_t i = 0; i < e.properties.size(); ++i)
@@ -297,6 +339,10 @@ PolygonMesh read_ply(const std::string& name, std::string_view bytes) {
   std::vector<uint32_t> corners;
   // Face colours become looks, one per distinct colour in order of first use.
   std::unordered_map<uint32_t, uint32_t> look_of_colour;
+  // With a TextureFile: texture coordinates per vertex (s t, u v, texture_u texture_v) or per face corner (a
+  // face list `texcoord` of u v pairs, MeshLab's wedge coordinates).
+  const bool textured = !h.texture_file.empty();
+  std::vector<glm::vec2> corner_uv, face_uv;
   for (const PlyElement& e : h.elements) {
     // An element without properties takes no bytes, whatever count the header gives it (up to 2^64 - 1).
     if (e.properties.empty()) continue;
@@ -322,16 +368,30 @@ PolygonMesh read_ply(const std::string& name, std::string_view bytes) {
         }
     }
     if (coloured && is_vertex) mesh.vertex_rgba.reserve(mesh.positions.capacity());
+    bool vertex_uv = false;
+    if (textured && is_vertex) {
+      const int uv[2] = {find_property(e, {"s", "u", "texture_u", "texture_s"}),
+                         find_property(e, {"t", "v", "texture_v", "texture_t"})};
+      vertex_uv = uv[0] >= 0 && uv[1] >= 0 && !e.properties[size_t(uv[0])].list() &&
+                  !e.properties[size_t(uv[1])].list();
+      if (vertex_uv) role[size_t(uv[0])] = 7, role[size_t(uv[1])] = 8;
+    }
+    const int texcoord_list = textured && is_face ? find_property(e, {"texcoord", "texcoords"}) : -1;
     for (size_t i = 0; i < e.count; ++i) {
       glm::dvec3 p(0.0);
       uint32_t colour[4] = {255, 255, 255, 255};
+      glm::vec2 uv(0.0f);
+      uint64_t face_corners = 0;
+      face_uv.clear();
       for (size_t k = 0; k < e.properties.size(); ++k) {
         const PlyProperty& prop = e.properties[k];
         r.at(e, i, prop);
         if (!prop.list()) {
           const double v = r.value(prop.type);
           const int what = role[k];
-          if (what >= 3) {
+          if (what >= 7) {
+            uv[what - 7] = float(r.finite(v));
+          } else if (what >= 3) {
             colour[what - 3] = colour_byte(r, prop.type, v);
           } else if (what >= 0) {
             p[what] = r.finite(v);
@@ -339,10 +399,20 @@ PolygonMesh read_ply(const std::string& name, std::string_view bytes) {
           continue;
         }
         const uint64_t n = r.count(prop.count_type);
+        if (int(k) == texcoord_list) {
+          if (n % 2 != 0 || n > (2u << 20))
+            r.fault(fmt::format("{} texture coordinates are not u v pairs", n));
+          for (uint64_t j = 0; j < n; j += 2) {
+            const float u = float(r.finite(r.value(prop.type)));
+            face_uv.push_back(glm::vec2(u, float(r.finite(r.value(prop.type)))));
+          }
+          continue;
+        }
         if (int(k) != index_list) {
           for (uint64_t j = 0; j < n; ++j) r.value(prop.type);
           continue;
         }
+        face_corners = n;
         if (n > (1u << 20)) r.fault(fmt::format("a face of {} corners", n));
         corners.resize(n);
         for (uint64_t j = 0; j < n; ++j) {
@@ -354,9 +424,15 @@ PolygonMesh read_ply(const std::string& name, std::string_view bytes) {
         mesh.add_face(corners.data(), uint32_t(n));
       }
       r.end_row();
+      if (texcoord_list >= 0) {
+        if (face_uv.size() != face_corners)
+          r.fault(fmt::format("{} texture coordinate pairs for {} corners", face_uv.size(), face_corners));
+        corner_uv.insert(corner_uv.end(), face_uv.begin(), face_uv.end());
+      }
       if (is_vertex) {
         mesh.positions.push_back(p);
         if (coloured) mesh.vertex_rgba.push_back(pack_rgba(colour[0], colour[1], colour[2], colour[3]));
+        if (vertex_uv) mesh.vertex_uv.push_back(uv);
       } else if (is_face && coloured) {
         const uint32_t rgba = pack_rgba(colour[0], colour[1], colour[2], colour[3]);
         const auto [look, added] = look_of_colour.try_emplace(rgba, uint32_t(mesh.looks.size()));
@@ -367,6 +443,13 @@ PolygonMesh read_ply(const std::string& name, std::string_view bytes) {
   }
   // One face colour for every face: one look, no per-face list (triangle_soup.h: look 0 for every triangle).
   if (mesh.looks.size() == 1) mesh.face_looks.clear();
+  if (textured) {
+    mesh.textures.push_back(
+        read_texture(std::filesystem::path(name).parent_path() / h.texture_file, name, h.texture_line));
+    if (mesh.looks.empty()) mesh.looks.push_back(MeshLook());
+    for (MeshLook& look : mesh.looks) look.texture = 0;
+    if (!corner_uv.empty()) split_corner_uvs(name, mesh, corner_uv);
+  }
   return mesh;
 }
 
