@@ -19,31 +19,41 @@ namespace {
 namespace fs = std::filesystem;
 using text::printable;
 
-// The message of a corner index that resolve_index refuses (out of line: the face loop stays small).
-[[noreturn, gnu::cold, gnu::noinline]] void bad_index(const std::string& name, size_t line,
-                                                      std::string_view token, std::string_view index,
-                                                      size_t count, const char* what, const char* whats) {
+// resolve_index for every index its fast path does not take: std::from_chars decides, as it always has;
+// fails naming the line when the index is not an integer or is out of range.
+[[gnu::noinline]] uint32_t resolve_index_slow(const std::string& name, size_t line, std::string_view token,
+                                              std::string_view index, size_t count, const char* what,
+                                              const char* whats) {
   long long value = 0;
   const auto [end, ec] = std::from_chars(index.data(), index.data() + index.size(), value);
   if (ec != std::errc() || end != index.data() + index.size() || index.empty())
     fail("{}: line {}: face corner '{}' {} {} index", name, line, printable(token),
          std::string_view(what) == "vertex" ? "does not start with a" : "has no valid", what);
-  fail("{}: line {}: face corner '{}' refers to {} {} but {} {} are defined before it", name, line,
-       printable(token), what, value, count, whats);
+  const long long resolved = value < 0 ? (long long)count + value : value - 1;
+  if (value == 0 || resolved < 0 || resolved >= (long long)count)
+    fail("{}: line {}: face corner '{}' refers to {} {} but {} {} are defined before it", name, line,
+         printable(token), what, value, count, whats);
+  return uint32_t(resolved);
 }
 
 // A 1-based or negative (relative) index of `what` (vertex, texture coordinate; `whats` its plural) resolved
-// against `count`.
-[[gnu::flatten]] inline uint32_t resolve_index(const std::string& name, size_t line, std::string_view token,
-                                               std::string_view index, size_t count, const char* what,
-                                               const char* whats) {
-  long long value = 0;
-  const auto [end, ec] = std::from_chars(index.data(), index.data() + index.size(), value);
-  const long long resolved = value < 0 ? (long long)count + value : value - 1;
-  if (ec != std::errc() || end != index.data() + index.size() || index.empty() || value == 0 ||
-      resolved < 0 || resolved >= (long long)count)
-    bad_index(name, line, token, index, count, what, whats);
-  return uint32_t(resolved);
+// against `count`. The common case, 1 to 9 digits in range, is parsed here (a digit loop, inlined into the
+// face loop; from_chars<long long> stopped being inlined there once the reader read colour); anything else
+// goes to resolve_index_slow.
+inline uint32_t resolve_index(const std::string& name, size_t line, std::string_view token,
+                              std::string_view index, size_t count, const char* what, const char* whats) {
+  const bool negative = !index.empty() && index[0] == '-';
+  const size_t digits = index.size() - negative;
+  if (digits >= 1 && digits <= 9) {
+    long long value = 0;
+    size_t i = negative;
+    for (; i < index.size() && uint8_t(index[i] - '0') < 10; ++i) value = value * 10 + (index[i] - '0');
+    if (i == index.size()) {
+      const long long resolved = negative ? (long long)count - value : value - 1;
+      if (value != 0 && resolved >= 0 && resolved < (long long)count) return uint32_t(resolved);
+    }
+  }
+  return resolve_index_slow(name, line, token, index, count, what, whats);
 }
 
 constexpr int32_t kNoUv = -1;
