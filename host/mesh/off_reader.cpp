@@ -206,7 +206,7 @@ const char* scan_face(OffBody& b, const char* p, const char* end) {
   p = scan_numbers(skip_spaces(p, end), end, colour, count);
   if (!p || count >= 3) return nullptr;  // a face colour is read token by token
   b.mesh.face_sizes.push_back(n);
-  b.face_colour(false, 0);
+  if (!b.mesh.face_looks.empty()) b.face_colour(false, 0);  // white, once an earlier face had a colour
   return p;
 }
 
