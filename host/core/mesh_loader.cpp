@@ -24,8 +24,8 @@ struct Format {
 
 // voxr's own readers, in double precision (mesh_readers.h); Assimp reads the rest (assimp_reader.h).
 const Format kFormats[] = {
-    {".obj",
-     [](const std::string& n, std::string_view b, std::vector<std::string>&) { return read_obj(n, b); }},
+    {".obj", [](const std::string& n, std::string_view b,
+                std::vector<std::string>& notes) { return read_obj(n, b, &notes); }},
     {".off",
      [](const std::string& n, std::string_view b, std::vector<std::string>&) { return read_off(n, b); }},
     {".ply",
@@ -41,8 +41,8 @@ const Format* find_format(const std::filesystem::path& file) {
 }
 
 // The soup of `mesh`: positions relative to an anchor chosen for the vertices the faces use, in double
-// until then; faces triangulated.
-TriangleSoup to_soup(const PolygonMesh& mesh, TriangulationReport& report) {
+// until then; faces triangulated; the mesh's colours, looks and textures moved into the soup's colors.
+TriangleSoup to_soup(PolygonMesh& mesh, TriangulationReport& report) {
   // Which vertices faces use (a bit each: sequential over the indices), then their bounds in order.
   std::vector<bool> used(mesh.positions.size(), false);
   for (uint32_t i : mesh.indices) used[i] = true;
@@ -58,7 +58,15 @@ TriangleSoup to_soup(const PolygonMesh& mesh, TriangulationReport& report) {
   for (size_t i = 0; i < mesh.positions.size(); ++i)
     soup.positions[i] = glm::vec4(glm::vec3(mesh.positions[i] - soup.anchor), 1.0f);
   soup.triangles.reserve(mesh.indices.size() - 2 * std::min(mesh.indices.size(), mesh.face_sizes.size()));
-  triangulate(mesh, soup.triangles, report);
+  SoupColors& colors = soup.colors;
+  triangulate(mesh, soup.triangles, report, &colors.triangle_look);
+  colors.vertex_rgba.assign(mesh.vertex_rgba.begin(), mesh.vertex_rgba.end());
+  colors.vertex_uv.assign(mesh.vertex_uv.begin(), mesh.vertex_uv.end());
+  colors.looks.reserve(mesh.looks.size());
+  for (const MeshLook& l : mesh.looks) colors.looks.push_back(SurfaceLook{l.factor_rgba, l.texture});
+  colors.textures.reserve(mesh.textures.size());
+  for (MeshTexture& t : mesh.textures)
+    colors.textures.push_back(SoupTexture{t.width, t.height, std::move(t.texels), std::move(t.source)});
   return soup;
 }
 

@@ -233,10 +233,16 @@ size_t drop_duplicate_triangles(TriangleSoup& soup) {
   std::unordered_set<TriangleKey, TriangleKeyHash> seen;
   seen.reserve(soup.triangles.size());
   size_t kept = 0;
-  for (const glm::uvec4& t : soup.triangles)
-    if (seen.insert(key_of(id[t.x], id[t.y], id[t.z])).second) soup.triangles[kept++] = t;
+  HostArray<uint32_t>& looks = soup.colors.triangle_look;  // kept parallel to the triangles
+  for (size_t i = 0; i < soup.triangles.size(); ++i) {
+    const glm::uvec4 t = soup.triangles[i];
+    if (!seen.insert(key_of(id[t.x], id[t.y], id[t.z])).second) continue;
+    if (!looks.empty()) looks[kept] = looks[i];
+    soup.triangles[kept++] = t;
+  }
   const size_t removed = soup.triangles.size() - kept;
   soup.triangles.resize(kept);
+  if (!looks.empty()) looks.resize(kept);
   return removed;
 }
 

@@ -545,6 +545,17 @@ bool single_mesh_as_is(const Scene& scene) {
   return scene.meshes.size() == 1 && scene.meshes[0].transform == glm::mat4(1.0f) && !is_animated(scene);
 }
 
+// The meshes' surface colours in scene order, as TriangleSoup::append combines them (pose_scene gives
+// geometry only); empty, and nothing copied, when no mesh has colour.
+SoupColors scene_colors(const Scene& scene) {
+  if (std::all_of(scene.meshes.begin(), scene.meshes.end(),
+                  [](const MeshInstance& m) { return m.soup.colors.empty(); }))
+    return SoupColors();
+  TriangleSoup all;
+  for (const MeshInstance& m : scene.meshes) all.append(m.soup);
+  return std::move(all.colors);
+}
+
 }  // namespace
 
 TriangleSoup take_scene_triangles(Scene& scene) {
@@ -558,7 +569,11 @@ TriangleSoup take_scene_triangles(Scene& scene) {
 }
 
 TriangleSoup scene_triangles(const Scene& scene) {
-  if (is_animated(scene)) return pose_scene(scene, 0.0, animation_anchor(scene));
+  if (is_animated(scene)) {
+    TriangleSoup posed = pose_scene(scene, 0.0, animation_anchor(scene));
+    posed.colors = scene_colors(scene);
+    return posed;
+  }
   TriangleSoup out;
   size_t vertices = 0, triangles = 0;
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());

@@ -18,6 +18,14 @@ TriangleSoup subdivide_once(const TriangleSoup& in) {
   out.positions.reserve(in.positions.size() + edge_guess);
   out.positions.assign(in.positions.begin(), in.positions.end());
   out.triangles.reserve(in.triangles.size() * 4);
+  // Colours: midpoints get the mean colour (per channel, rounded half up) and UV of their edge's ends, the
+  // four triangles their parent's look.
+  const SoupColors& cin = in.colors;
+  SoupColors& cout = out.colors;
+  cout.vertex_rgba = cin.vertex_rgba;
+  cout.vertex_uv = cin.vertex_uv;
+  cout.looks = cin.looks;
+  cout.textures = cin.textures;
   std::unordered_map<uint64_t, uint32_t> midpoints;
   midpoints.reserve(edge_guess);
   auto midpoint = [&](uint32_t a, uint32_t b) {
@@ -26,15 +34,25 @@ TriangleSoup subdivide_once(const TriangleSoup& in) {
     if (inserted) {
       out.positions.push_back(
           glm::vec4(0.5f * (glm::vec3(in.positions[a]) + glm::vec3(in.positions[b])), 1.0f));
+      if (!cin.vertex_rgba.empty()) {
+        const uint32_t x = cin.vertex_rgba[a], y = cin.vertex_rgba[b];
+        uint32_t m = 0;
+        for (int s = 0; s < 32; s += 8) m |= ((((x >> s) & 255u) + ((y >> s) & 255u) + 1u) >> 1) << s;
+        cout.vertex_rgba.push_back(m);
+      }
+      if (!cin.vertex_uv.empty()) cout.vertex_uv.push_back(0.5f * (cin.vertex_uv[a] + cin.vertex_uv[b]));
     }
     return it->second;
   };
-  for (const glm::uvec4& t : in.triangles) {
+  for (size_t i = 0; i < in.triangles.size(); ++i) {
+    const glm::uvec4& t = in.triangles[i];
     const uint32_t ab = midpoint(t.x, t.y), bc = midpoint(t.y, t.z), ca = midpoint(t.z, t.x);
     out.triangles.push_back({t.x, ab, ca, t.w});
     out.triangles.push_back({ab, t.y, bc, t.w});
     out.triangles.push_back({ca, bc, t.z, t.w});
     out.triangles.push_back({ab, bc, ca, t.w});
+    if (!cin.triangle_look.empty())
+      cout.triangle_look.insert(cout.triangle_look.end(), 4, cin.triangle_look[i]);
   }
   return out;
 }

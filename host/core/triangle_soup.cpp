@@ -60,7 +60,67 @@ glm::dvec3 choose_anchor(const glm::dvec3& lo, const glm::dvec3& hi) {
   return glm::floor(lo / scale) * scale;
 }
 
+namespace {
+
+// Appends `b`'s colours (for b_vertices vertices and b_triangles triangles) to `a`'s (for a_vertices and
+// a_triangles): an array one side lacks is filled with its default (white, UV (0, 0), a white look), look
+// and texture indices of `b` are offset past `a`'s, and a texture of `b` that `a` already holds (same source
+// and size) is shared. Nothing happens, and nothing is allocated, when neither has colours.
+void append_colors(SoupColors& a, size_t a_vertices, size_t a_triangles, const SoupColors& b,
+                   size_t b_vertices, size_t b_triangles) {
+  if (a.empty() && b.empty()) return;
+  constexpr uint32_t kWhite = 0xffffffffu;
+  if (!a.vertex_rgba.empty() || !b.vertex_rgba.empty()) {
+    a.vertex_rgba.resize(a_vertices, kWhite);  // fills a soup that had none
+    if (b.vertex_rgba.empty())
+      a.vertex_rgba.resize(a_vertices + b_vertices, kWhite);
+    else
+      a.vertex_rgba.insert(a.vertex_rgba.end(), b.vertex_rgba.begin(), b.vertex_rgba.end());
+  }
+  if (!a.vertex_uv.empty() || !b.vertex_uv.empty()) {
+    a.vertex_uv.resize(a_vertices, glm::vec2(0.0f));
+    if (b.vertex_uv.empty())
+      a.vertex_uv.resize(a_vertices + b_vertices, glm::vec2(0.0f));
+    else
+      a.vertex_uv.insert(a.vertex_uv.end(), b.vertex_uv.begin(), b.vertex_uv.end());
+  }
+  if (a.looks.empty() && b.looks.empty()) return;
+  // Both sides as explicit per-triangle looks.
+  if (a.looks.empty()) a.looks.push_back(SurfaceLook());
+  a.triangle_look.resize(a_triangles, 0u);  // no triangle_look: look 0 for every triangle
+  const uint32_t look_base = uint32_t(a.looks.size());
+  if (b.looks.empty()) {
+    a.looks.push_back(SurfaceLook());
+    a.triangle_look.resize(a_triangles + b_triangles, look_base);
+    return;
+  }
+  std::vector<int32_t> texture_id(b.textures.size());
+  for (size_t t = 0; t < b.textures.size(); ++t) {
+    const SoupTexture& bt = b.textures[t];
+    const auto same = std::find_if(a.textures.begin(), a.textures.end(), [&](const SoupTexture& at) {
+      return !bt.source.empty() && at.source == bt.source && at.width == bt.width && at.height == bt.height;
+    });
+    texture_id[t] = int32_t(same - a.textures.begin());
+    if (same == a.textures.end()) a.textures.push_back(bt);
+  }
+  for (SurfaceLook look : b.looks) {
+    if (look.texture >= 0 && size_t(look.texture) < texture_id.size())
+      look.texture = texture_id[look.texture];
+    a.looks.push_back(look);
+  }
+  if (b.triangle_look.empty()) {
+    a.triangle_look.resize(a_triangles + b_triangles, look_base);
+  } else {
+    a.triangle_look.reserve(a_triangles + b_triangles);
+    for (uint32_t l : b.triangle_look) a.triangle_look.push_back(l + look_base);
+  }
+}
+
+}  // namespace
+
 void TriangleSoup::append(const TriangleSoup& other, const glm::mat4& transform, uint32_t material) {
+  append_colors(colors, positions.size(), triangles.size(), other.colors, other.positions.size(),
+                other.triangles.size());
   const uint32_t base = static_cast<uint32_t>(positions.size());
   positions.reserve(positions.size() + other.positions.size());
   if (transform == glm::mat4(1.0f) && other.anchor == anchor) {
@@ -97,8 +157,45 @@ namespace {
 
 }  // namespace
 
+namespace {
+
+// The colour arrays against the soup's (triangle_soup.h SoupColors).
+void validate_colors(const TriangleSoup& soup, const std::string& source) {
+  const SoupColors& c = soup.colors;
+  const size_t v = soup.positions.size(), t = soup.triangles.size();
+  if (!c.vertex_rgba.empty() && c.vertex_rgba.size() != v)
+    fail("{}: {} vertex colours for {} vertices", source, c.vertex_rgba.size(), v);
+  if (!c.vertex_uv.empty() && c.vertex_uv.size() != v)
+    fail("{}: {} texture coordinates for {} vertices", source, c.vertex_uv.size(), v);
+  for (size_t i = 0; i < c.vertex_uv.size(); ++i)
+    if (!std::isfinite(c.vertex_uv[i].x) || !std::isfinite(c.vertex_uv[i].y))
+      fail("{}: vertex {} has texture coordinates ({}, {}) that are not finite", source, i, c.vertex_uv[i].x,
+           c.vertex_uv[i].y);
+  if (!c.triangle_look.empty() && c.triangle_look.size() != t)
+    fail("{}: {} triangle looks for {} triangles", source, c.triangle_look.size(), t);
+  for (size_t i = 0; i < c.triangle_look.size(); ++i)
+    if (c.triangle_look[i] >= c.looks.size())
+      fail("{}: triangle {} uses look {} but there are {} looks", source, i, c.triangle_look[i],
+           c.looks.size());
+  for (size_t i = 0; i < c.looks.size(); ++i)
+    if (c.looks[i].texture < -1 ||
+        (c.looks[i].texture >= 0 && size_t(c.looks[i].texture) >= c.textures.size()))
+      fail("{}: look {} uses texture {} but there are {} textures", source, i, c.looks[i].texture,
+           c.textures.size());
+  for (size_t i = 0; i < c.textures.size(); ++i) {
+    const SoupTexture& tex = c.textures[i];
+    if (tex.width == 0 || tex.height == 0 || uint64_t(tex.width) * tex.height != tex.texels.size())
+      fail("{}: texture {} ({}) has {} texels for {}x{}", source, i, tex.source, tex.texels.size(), tex.width,
+           tex.height);
+  }
+}
+
+}  // namespace
+
 size_t validate_soup(const TriangleSoup& soup, const std::string& source) {
   if (soup.triangles.empty()) fail("{}: the mesh has no triangles", source);
+  if (!soup.colors.empty() || !soup.colors.vertex_uv.empty() || !soup.colors.triangle_look.empty())
+    validate_colors(soup, source);
   const size_t n = soup.positions.size();
   const glm::vec4* pos = soup.positions.data();
   auto finite = [](const glm::vec4& p) {

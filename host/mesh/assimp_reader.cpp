@@ -1,6 +1,7 @@
 #include "mesh/assimp_reader.h"
 
 #include <assimp/config.h>
+#include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
@@ -18,6 +19,7 @@
 
 #include "mesh/corner_welder.h"
 #include "mesh/file_bytes.h"
+#include "mesh/texture_reader.h"
 #include "util/error.h"
 #include "util/file_extension.h"
 #include "util/text_scan.h"
@@ -59,8 +61,10 @@ struct Skipped {
 // Appends one instance of `mesh` under the world transform `world`. Like voxr's own readers, it refuses
 // positions that are not finite or beyond text::kMaxCoordinate (the triangulation and the soup need them
 // finite).
+// With `colours`, each corner also carries its COLOR_0 (white without) and, with `uvs`, its TEXCOORD_0
+// ((0, 0) without); both must be finite and colours in [0, 1].
 void append_instance(const std::string& name, const aiMesh& mesh, const glm::dmat4& world, PolygonMesh& out,
-                     CornerWelder& welder, Skipped& skipped) {
+                     CornerWelder& welder, Skipped& skipped, bool colours, bool uvs) {
   bool any_face = false;
   for (unsigned f = 0; f < mesh.mNumFaces && !any_face; ++f) any_face = mesh.mFaces[f].mNumIndices >= 3;
   if (!any_face) {  // a points- or lines-only mesh adds no vertices
@@ -78,7 +82,28 @@ void append_instance(const std::string& name, const aiMesh& mesh, const glm::dma
           std::abs(w.z) <= text::kMaxCoordinate))
       fail("{}: mesh '{}' vertex {} is not finite or too large ({}, {}, {}) after its node transforms", name,
            text::printable(mesh.mName.C_Str()), v, w.x, w.y, w.z);
-    id[v] = welder.add(w);
+    uint32_t rgba = kWhiteRgba;
+    glm::vec2 uv(0.0f);
+    if (colours && mesh.HasVertexColors(0)) {
+      const aiColor4D& c = mesh.mColors[0][v];
+      const float k[4] = {c.r, c.g, c.b, c.a};
+      uint32_t b[4];
+      for (int i = 0; i < 4; ++i) {
+        if (!(k[i] >= 0.0f && k[i] <= 1.0f))
+          fail("{}: mesh '{}' vertex {} colour ({}, {}, {}, {}) is not in [0, 1]", name,
+               text::printable(mesh.mName.C_Str()), v, c.r, c.g, c.b, c.a);
+        b[i] = unit_to_byte(k[i]);
+      }
+      rgba = pack_rgba(b[0], b[1], b[2], b[3]);
+    }
+    if (uvs && mesh.HasTextureCoords(0)) {
+      const aiVector3D& t = mesh.mTextureCoords[0][v];
+      if (!std::isfinite(t.x) || !std::isfinite(t.y))
+        fail("{}: mesh '{}' vertex {} texture coordinate ({}, {}) is not finite", name,
+             text::printable(mesh.mName.C_Str()), v, t.x, t.y);
+      uv = glm::vec2(t.x, t.y);
+    }
+    id[v] = welder.add(w, rgba, uv);
   }
   const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
   std::vector<uint32_t> corners;
@@ -92,6 +117,74 @@ void append_instance(const std::string& name, const aiMesh& mesh, const glm::dma
     if (mirrored) std::reverse(corners.begin(), corners.end());
     out.add_face(corners.data(), uint32_t(corners.size()));
     out.materials.push_back(mesh.mMaterialIndex);
+  }
+}
+
+// The base-colour texture `path` of a material: embedded ("*0", or a name the file embeds) or a file
+// relative to the mesh. Raw embedded texels (aiTexel, BGRA) are taken as they are.
+MeshTexture material_texture(const std::string& name, const aiScene& scene, const std::string& path) {
+  if (const aiTexture* t = scene.GetEmbeddedTexture(path.c_str())) {
+    const std::string source = fmt::format("{} (embedded texture '{}')", name, text::printable(path));
+    if (t->pcData == nullptr) fail("{}: no data", source);
+    if (t->mHeight == 0)  // compressed: mWidth bytes of an image file
+      return decode_texture(source, std::string_view(reinterpret_cast<const char*>(t->pcData), t->mWidth));
+    if (uint64_t(t->mWidth) * t->mHeight > kMaxTextureTexels)
+      fail("{}: {}x{} texels are more than voxr reads", source, t->mWidth, t->mHeight);
+    MeshTexture out;
+    out.width = t->mWidth;
+    out.height = t->mHeight;
+    out.source = source;
+    out.texels.resize(size_t(t->mWidth) * t->mHeight);
+    for (size_t i = 0; i < out.texels.size(); ++i)
+      out.texels[i] = pack_rgba(t->pcData[i].r, t->pcData[i].g, t->pcData[i].b, t->pcData[i].a);
+    return out;
+  }
+  std::string relative = path;
+  std::replace(relative.begin(), relative.end(), '\\', '/');
+  const fs::path folder = fs::path(name).parent_path();
+  fs::path file = folder / relative;
+  // FBX and Collada files often keep the absolute path of the machine that wrote them: the file name
+  // beside the mesh is tried next.
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec) && fs::is_regular_file(folder / fs::path(relative).filename(), ec))
+    file = folder / fs::path(relative).filename();
+  return read_texture(file, name);
+}
+
+// Each material's look: the base colour factor (AI_MATKEY_BASE_COLOR, else COLOR_DIFFUSE with OPACITY as
+// alpha) and base-colour texture (aiTextureType_BASE_COLOR, else DIFFUSE), textures read once per path.
+void read_looks(const std::string& name, const aiScene& scene, PolygonMesh& out) {
+  std::vector<std::string> paths;
+  for (unsigned m = 0; m < scene.mNumMaterials; ++m) {
+    const aiMaterial& material = *scene.mMaterials[m];
+    MeshLook look;
+    aiColor4D c(1.0f, 1.0f, 1.0f, 1.0f);
+    if (material.Get(AI_MATKEY_BASE_COLOR, c) != AI_SUCCESS &&
+        material.Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS) {
+      float opacity = 1.0f;
+      if (material.Get(AI_MATKEY_OPACITY, opacity) == AI_SUCCESS) c.a = opacity;
+    }
+    const float k[4] = {c.r, c.g, c.b, c.a};
+    uint32_t b[4];
+    for (int i = 0; i < 4; ++i) {
+      if (!(k[i] >= 0.0f && k[i] <= 1.0f))
+        fail("{}: material '{}' base colour ({}, {}, {}, {}) is not in [0, 1]", name,
+             text::printable(material.GetName().C_Str()), c.r, c.g, c.b, c.a);
+      b[i] = unit_to_byte(k[i]);
+    }
+    look.factor_rgba = pack_rgba(b[0], b[1], b[2], b[3]);
+    aiString path;
+    if (material.GetTexture(aiTextureType_BASE_COLOR, 0, &path) == AI_SUCCESS ||
+        material.GetTexture(aiTextureType_DIFFUSE, 0, &path) == AI_SUCCESS) {
+      const std::string p = path.C_Str();
+      const auto known = std::find(paths.begin(), paths.end(), p);
+      look.texture = int32_t(known - paths.begin());
+      if (known == paths.end()) {
+        out.textures.push_back(material_texture(name, scene, p));
+        paths.push_back(p);
+      }
+    }
+    out.looks.push_back(look);
   }
 }
 
@@ -180,7 +273,18 @@ PolygonMesh read_with_assimp(const fs::path& file) {
   PolygonMesh out;
   size_t vertices = 0;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) vertices += scene->mMeshes[m]->mNumVertices;
-  CornerWelder welder(out, vertices);
+  // Surface colour: looks from the materials; corners carry COLOR_0 when a mesh has it, TEXCOORD_0 when a
+  // material has a texture. A file whose materials are all plain white and that has no vertex colours has
+  // no colour at all.
+  read_looks(name, *scene, out);
+  const bool textured = !out.textures.empty();
+  bool colours = false;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) colours |= scene->mMeshes[m]->HasVertexColors(0);
+  const bool plain = !colours && !textured &&
+                     std::all_of(out.looks.begin(), out.looks.end(),
+                                 [](const MeshLook& l) { return l.factor_rgba == kWhiteRgba; });
+  if (plain) out.looks.clear();
+  CornerWelder welder(out, vertices, colours || textured);
   Skipped skipped;
   if (scene->mRootNode != nullptr) {
     std::vector<std::pair<const aiNode*, glm::dmat4>> stack{{scene->mRootNode, glm::dmat4(1.0)}};
@@ -189,7 +293,8 @@ PolygonMesh read_with_assimp(const fs::path& file) {
       stack.pop_back();
       const glm::dmat4 world = parent * to_dmat4(node->mTransformation);
       for (unsigned i = 0; i < node->mNumMeshes; ++i)
-        append_instance(name, *scene->mMeshes[node->mMeshes[i]], world, out, welder, skipped);
+        append_instance(name, *scene->mMeshes[node->mMeshes[i]], world, out, welder, skipped,
+                        colours || textured, textured);
       // Children pushed in reverse so instances come out in the file's order.
       for (unsigned c = node->mNumChildren; c-- > 0;) stack.emplace_back(node->mChildren[c], world);
     }
@@ -197,6 +302,27 @@ PolygonMesh read_with_assimp(const fs::path& file) {
   if (out.face_count() == 0)
     fail("{}: no polygon faces ({} meshes; skipped {} points and {} lines)", name, scene->mNumMeshes,
          skipped.points, skipped.lines);
+  if (!textured) out.vertex_uv.clear();
+  if (!colours) out.vertex_rgba.clear();
+  // Only the looks that faces use, in order of first use (Assimp adds a default material that a file's
+  // faces may not use); one look for every face needs no per-face list.
+  if (!out.looks.empty()) {
+    std::vector<int32_t> look_of(out.looks.size(), -1);
+    std::vector<MeshLook> used;
+    out.face_looks.resize(out.materials.size());
+    for (size_t f = 0; f < out.materials.size(); ++f) {
+      int32_t& look = look_of[out.materials[f]];
+      if (look < 0) {
+        look = int32_t(used.size());
+        used.push_back(out.looks[out.materials[f]]);
+      }
+      out.face_looks[f] = uint32_t(look);
+    }
+    out.looks = std::move(used);
+    if (out.looks.size() <= 1) out.face_looks.clear();
+    if (!colours && !textured && out.looks.size() == 1 && out.looks[0].factor_rgba == kWhiteRgba)
+      out.looks.clear();
+  }
   // Every face on material 0 says no more than no materials at all (PolygonMesh: empty when the file has
   // none).
   if (std::all_of(out.materials.begin(), out.materials.end(), [](uint32_t m) { return m == 0; }))

@@ -26,10 +26,16 @@ bool is_assimp_extension(const std::filesystem::path& file);
 // the file's materials (Assimp's glTF reader loads materials as primitives reference them, walking the nodes
 // depth-first, so a glTF's own `materials` index is not kept; a primitive without one gets Assimp's default
 // material after those); empty when every face has material 0.
+// Surface colour (docs/mesh-files.md#colour): COLOR_0 per vertex, TEXCOORD_0 when a material has a texture
+// (corners are then welded by position, colour and UV), one look per material the faces use in order of first
+// use (base colour factor: AI_MATKEY_BASE_COLOR, else COLOR_DIFFUSE with OPACITY; texture:
+// aiTextureType_BASE_COLOR, else DIFFUSE, embedded or a file relative to the mesh, else its file name beside
+// the mesh); nothing when the file has no vertex colours and only plain white materials.
 // Throws voxr::Error, one line starting with the path: missing or empty file, unknown extension, a file that
 // does not look like its format (checked before Assimp sees it), a file Assimp cannot parse or validate (with
 // Assimp's message), a position that is not finite or beyond 1e30 after its transforms, or no polygon faces
-// (with the points and lines skipped).
+// (with the points and lines skipped); a colour outside [0, 1], a texture coordinate that is not finite, a
+// texture that is missing or cannot be decoded.
 PolygonMesh read_with_assimp(const std::filesystem::path& file);
 
 }  // namespace voxr

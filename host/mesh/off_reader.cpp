@@ -4,7 +4,10 @@
 #include <exception>
 #include <thread>
 
+#include <unordered_map>
+
 #include "mesh/mesh_readers.h"
+#include "mesh/texture_reader.h"
 #include "util/text_scan.h"
 
 namespace voxr {
@@ -28,10 +31,46 @@ struct OffBody {
   size_t vertices;  // in the file: face indices are checked against it
   size_t wanted;    // vertices to read here (all of them, or none when reading from the first face on)
   size_t faces;     // faces to read here
+  // Vertex colour columns (COFF, CNOFF, STCOFF ...): where they start (after x y z and a normal), -1 when
+  // the keyword has no C; how many numbers follow them (2 with ST).
+  int colour_at = -1;
+  size_t after_colour = 0;
   PolygonMesh mesh;
+  std::unordered_map<uint32_t, uint32_t> look_of_colour;  // face colours -> looks
   size_t f() const { return mesh.face_sizes.size(); }
   bool done() const { return mesh.positions.size() == wanted && f() == faces; }
+
+  uint32_t look(uint32_t rgba) {
+    const auto [it, added] = look_of_colour.try_emplace(rgba, uint32_t(mesh.looks.size()));
+    if (added) mesh.looks.push_back(MeshLook{rgba, -1});
+    return it->second;
+  }
+  // Records the colour of the face just added: `rgba`, or none (white once any face has a colour).
+  void face_colour(bool has, uint32_t rgba) {
+    if (!has && mesh.face_looks.empty()) return;
+    if (mesh.face_looks.empty() && f() > 1) mesh.face_looks.assign(f() - 1, look(kWhiteRgba));
+    mesh.face_looks.push_back(look(has ? rgba : kWhiteRgba));
+  }
 };
+
+// A colour of 3 or 4 components from tokens[first, first + count): integers 0..255 when every token is
+// written as an integer, numbers in [0, 1] otherwise (OFF writers use both). Fails naming the line.
+uint32_t off_colour(const std::string& name, size_t number, const std::vector<std::string_view>& tokens,
+                    size_t first, size_t count, const char* what) {
+  bool integers = true;
+  for (size_t k = first; k < first + count; ++k)
+    integers &= tokens[k].find_first_not_of("+-0123456789") == std::string_view::npos;
+  uint32_t c[4] = {255, 255, 255, 255};
+  for (size_t k = 0; k < count; ++k) {
+    double v = 0.0;
+    text::parse_number(tokens[first + k], v);  // checked by check_numbers
+    if (integers ? !(v >= 0.0 && v <= 255.0) : !(v >= 0.0 && v <= 1.0))
+      fail("{}: line {}: {} component '{}' is not in {}", name, number, what, printable(tokens[first + k]),
+           integers ? "0..255 (integers)" : "[0, 1] (numbers with a point)");
+    c[k] = integers ? uint32_t(v) : unit_to_byte(v);
+  }
+  return pack_rgba(c[0], c[1], c[2], c[3]);
+}
 
 // Every token of `line` (outside comments) must be a finite number. Returns the number of tokens.
 size_t check_numbers(const std::string& name, std::string_view line, size_t number,
@@ -58,6 +97,16 @@ void read_off_line(OffBody& b, std::string_view line, size_t number, std::vector
       fail("{}: line {}: vertex {} needs three coordinates", name, number, mesh.positions.size());
     glm::dvec3 p;
     for (int c = 0; c < 3; ++c) text::parse_number(tokens[c], p[c]);  // checked above
+    if (b.colour_at >= 0) {
+      // A vertex without the colour columns is white (files that say COFF and give none are common).
+      const size_t at = size_t(b.colour_at);
+      const size_t count = tokens.size() > at + b.after_colour ? tokens.size() - at - b.after_colour : 0;
+      if (count != 0 && count != 3 && count != 4)
+        fail("{}: line {}: vertex {} has {} colour components after column {}; a colour has 3 or 4", name,
+             number, mesh.positions.size(), count, at);
+      mesh.vertex_rgba.push_back(count == 0 ? kWhiteRgba
+                                            : off_colour(name, number, tokens, at, count, "vertex colour"));
+    }
     mesh.positions.push_back(p);
     return;
   }
@@ -74,6 +123,10 @@ void read_off_line(OffBody& b, std::string_view line, size_t number, std::vector
     mesh.indices.push_back(index);
   }
   mesh.face_sizes.push_back(n);
+  // A colour after the indices: 3 or 4 components (1 or 2 numbers, a colour-map index, are ignored).
+  const size_t extra = tokens.size() - 1 - n;
+  const bool coloured = extra == 3 || extra == 4;
+  b.face_colour(coloured, coloured ? off_colour(name, number, tokens, n + 1, extra, "face colour") : 0);
 }
 
 // The fast path: reads well-formed lines straight from the bytes, with the same from_chars calls on the same
@@ -128,6 +181,7 @@ const char* scan_numbers(const char* p, const char* end, double (&first)[3], siz
 }
 
 const char* scan_vertex(OffBody& b, const char* p, const char* end) {
+  if (b.colour_at >= 0) return nullptr;  // coloured vertices are read token by token
   double v[3];
   size_t count;
   p = scan_numbers(p, end, v, count);
@@ -150,7 +204,9 @@ const char* scan_face(OffBody& b, const char* p, const char* end) {
   double colour[3];
   size_t count;
   p = scan_numbers(skip_spaces(p, end), end, colour, count);
-  if (p) b.mesh.face_sizes.push_back(n);
+  if (!p || count >= 3) return nullptr;  // a face colour is read token by token
+  b.mesh.face_sizes.push_back(n);
+  if (!b.mesh.face_looks.empty()) b.face_colour(false, 0);  // white, once an earlier face had a colour
   return p;
 }
 
@@ -219,6 +275,13 @@ const char* skip_lines_with_tokens(const char* p, const char* end, size_t count,
   return count == 0 ? p : nullptr;
 }
 
+// One face colour for every face: one look and no per-face list (triangle_soup.h: look 0 for every
+// triangle).
+PolygonMesh finish(PolygonMesh mesh) {
+  if (mesh.looks.size() == 1) mesh.face_looks.clear();
+  return mesh;
+}
+
 }  // namespace
 
 PolygonMesh read_off(const std::string& name, std::string_view bytes) {
@@ -247,6 +310,12 @@ PolygonMesh read_off(const std::string& name, std::string_view bytes) {
     }
   }
   if (header.size() < 4) fail("{}: the OFF header ends before the vertex, face and edge counts", name);
+  // Geomview's vertex columns: x y z, then nx ny nz (N), then a colour (C), then s t (ST).
+  const std::string_view prefix = header[0].substr(0, header[0].size() - 3);
+  const int colour_at = prefix.find('C') != std::string_view::npos
+                            ? 3 + (prefix.find('N') != std::string_view::npos ? 3 : 0)
+                            : -1;
+  const size_t after_colour = prefix.find("ST") != std::string_view::npos ? 2 : 0;
   const size_t vertices = text::parse_count(name, number, header[1], "vertex");
   const size_t faces = text::parse_count(name, number, header[2], "face");
   text::parse_count(name, number, header[3], "edge");
@@ -264,6 +333,8 @@ PolygonMesh read_off(const std::string& name, std::string_view bytes) {
   if (face_start) {
     OffBody v(name, vertices, vertices, 0, size_t(face_start - body.data())),
         f(name, vertices, 0, faces, size_t(end - face_start));
+    v.colour_at = colour_at;
+    v.after_colour = after_colour;
     std::exception_ptr face_error;
     std::thread face_reader([&] {
       try {
@@ -283,12 +354,15 @@ PolygonMesh read_off(const std::string& name, std::string_view bytes) {
     face_reader.join();
     if (face_error) std::rethrow_exception(face_error);
     f.mesh.positions = std::move(v.mesh.positions);
-    return std::move(f.mesh);
+    f.mesh.vertex_rgba = std::move(v.mesh.vertex_rgba);
+    return finish(std::move(f.mesh));
   }
   OffBody b(name, vertices, vertices, faces, body.size());
+  b.colour_at = colour_at;
+  b.after_colour = after_colour;
   const char* rest = read_off_body(b, body.data(), end, number);
   check_off_end(b, rest, end, number);
-  return std::move(b.mesh);
+  return finish(std::move(b.mesh));
 }
 
 }  // namespace voxr

@@ -11,11 +11,32 @@
 
 namespace voxr {
 
+// A base-colour texture as read: RGBA8 texels (R in the low byte), row 0 at the top of the image, texel (x,
+// y) at texels[y * width + x]. mesh_loader moves it into the soup's SoupTexture (core/triangle_soup.h; mesh/
+// does not include core/, docs/architecture.md).
+struct MeshTexture {
+  uint32_t width = 0, height = 0;
+  std::vector<uint32_t> texels;
+  std::string source;  // the file, for messages
+};
+
+// How a face is coloured, as the soup's SurfaceLook: factor x texture(uv) x vertex colour.
+struct MeshLook {
+  uint32_t factor_rgba = 0xffffffffu;  // RGBA8, R in the low byte
+  int32_t texture = -1;                // index into PolygonMesh::textures, -1 for none
+};
+
 struct PolygonMesh {
   std::vector<glm::dvec3> positions;  // world units, as in the file
   std::vector<uint32_t> indices;      // every face's corners, face after face
   std::vector<uint32_t> face_sizes;   // corners of each face (>= 3 for faces that triangulate)
   std::vector<uint32_t> materials;    // per face; empty when the file has none (material id 0)
+  // Surface colour, as the soup's SoupColors gives it (each empty when the file has none):
+  std::vector<uint32_t> vertex_rgba;  // per position, RGBA8 (R in the low byte)
+  std::vector<glm::vec2> vertex_uv;   // per position, texture coordinates (u right, v up)
+  std::vector<uint32_t> face_looks;   // per face, index into looks
+  std::vector<MeshLook> looks;
+  std::vector<MeshTexture> textures;
 
   size_t face_count() const { return face_sizes.size(); }
   void add_face(const uint32_t* corners, uint32_t count) {

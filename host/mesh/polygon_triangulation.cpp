@@ -116,7 +116,16 @@ std::vector<std::string> TriangulationReport::warnings(const std::string& source
   return out;
 }
 
-void triangulate(const PolygonMesh& mesh, HostArray<glm::uvec4>& out, TriangulationReport& report) {
+void triangulate(const PolygonMesh& mesh, HostArray<glm::uvec4>& out, TriangulationReport& report,
+                 HostArray<uint32_t>* looks) {
+  // Each face's look for every triangle the face appended (faces append in order, in their own iteration).
+  const bool with_looks = looks != nullptr && !mesh.face_looks.empty();
+  size_t looked = out.size();
+  auto look_up_to = [&](size_t face) {
+    if (!with_looks) return;
+    looks->resize(looks->size() + (out.size() - looked), mesh.face_looks[face]);
+    looked = out.size();
+  };
   const std::vector<glm::dvec3>& pos = mesh.positions;
   // The common case, a mesh of triangles only, in one pass with no per-face work.
   if (mesh.indices.size() == 3 * mesh.face_sizes.size() &&
@@ -126,11 +135,13 @@ void triangulate(const PolygonMesh& mesh, HostArray<glm::uvec4>& out, Triangulat
     const uint32_t* c = mesh.indices.data();
     for (size_t f = 0; f < mesh.face_sizes.size(); ++f, c += 3)
       out[first + f] = glm::uvec4(c[0], c[1], c[2], mesh.materials.empty() ? 0u : mesh.materials[f]);
+    if (with_looks) looks->insert(looks->end(), mesh.face_looks.begin(), mesh.face_looks.end());
     return;
   }
   std::vector<glm::dvec2> plane;
   size_t at = 0;
   for (size_t f = 0; f < mesh.face_sizes.size(); ++f) {
+    if (f > 0) look_up_to(f - 1);
     const uint32_t n = mesh.face_sizes[f];
     const uint32_t* c = mesh.indices.data() + at;
     at += n;
@@ -216,6 +227,7 @@ void triangulate(const PolygonMesh& mesh, HostArray<glm::uvec4>& out, Triangulat
       if (t->info() % 2 == 1)
         out.push_back(glm::uvec4(t->vertex(0)->info(), t->vertex(1)->info(), t->vertex(2)->info(), material));
   }
+  if (!mesh.face_sizes.empty()) look_up_to(mesh.face_sizes.size() - 1);
 }
 
 }  // namespace voxr

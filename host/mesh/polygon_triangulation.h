@@ -29,7 +29,9 @@ struct TriangulationReport {
 };
 
 // Appends the triangles of every face of `mesh` to `out`: xyz index mesh.positions, w is the face's
-// material (mesh.materials, or 0). Triangles keep the face's winding.
-void triangulate(const PolygonMesh& mesh, HostArray<glm::uvec4>& out, TriangulationReport& report);
+// material (mesh.materials, or 0). Triangles keep the face's winding. When `looks` is given and the mesh
+// has face_looks, each triangle's face look is appended to it (parallel to the triangles appended to `out`).
+void triangulate(const PolygonMesh& mesh, HostArray<glm::uvec4>& out, TriangulationReport& report,
+                 HostArray<uint32_t>* looks = nullptr);
 
 }  // namespace voxr

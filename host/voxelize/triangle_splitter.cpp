@@ -14,11 +14,30 @@ struct GridBox {
   glm::vec3 lo{std::numeric_limits<float>::max()}, hi{-std::numeric_limits<float>::max()};
 };
 
+// A corner's surface colour attributes, interpolated as positions are (midpoints).
+struct CornerColor {
+  uint32_t rgba = 0xffffffffu;
+  glm::vec2 uv{0.0f};
+};
+
+// The midpoint of two RGBA8 colours, per channel rounded half up: (a + b + 1) / 2.
+uint32_t mid_rgba(uint32_t a, uint32_t b) {
+  uint32_t out = 0;
+  for (int s = 0; s < 32; s += 8) out |= ((((a >> s) & 255u) + ((b >> s) & 255u) + 1u) >> 1) << s;
+  return out;
+}
+
+CornerColor mid(const CornerColor& a, const CornerColor& b) {
+  return {mid_rgba(a.rgba, b.rgba), 0.5f * (a.uv + b.uv)};
+}
+
 struct Splitter {
   const std::array<float, 12>& m;
   const GridSpec& grid;
   SplitCull cull;
   TriangleSoup& out;
+  // Which colour arrays the soup has (pieces' new vertices get entries in those) and the triangle's look.
+  bool rgba = false, uv = false, looks = false;
 
   GridBox box(const glm::vec3 (&w)[3]) const {
     GridBox b;
@@ -40,7 +59,7 @@ struct Splitter {
     for (glm::vec3& p : w) p += axis * (target - grid_coords(m, glm::vec4(p, 1.0f)).z);
   }
 
-  void split(glm::vec3 (&w)[3], uint32_t material) {
+  void split(glm::vec3 (&w)[3], const CornerColor (&c)[3], uint32_t material, uint32_t look) {
     GridBox b = box(w);
     const int culled_axes = cull == SplitCull::kGrid ? 3 : 2;
     for (int a = 0; a < culled_axes; ++a)
@@ -53,12 +72,19 @@ struct Splitter {
     if (std::max({extent.x, extent.y, extent.z}) <= kSplitExtentVoxels) {
       const uint32_t base = uint32_t(out.positions.size());
       for (const glm::vec3& p : w) out.positions.push_back(glm::vec4(p, 1.0f));
+      for (int k = 0; k < 3; ++k) {
+        if (rgba) out.colors.vertex_rgba.push_back(c[k].rgba);
+        if (uv) out.colors.vertex_uv.push_back(c[k].uv);
+      }
       out.triangles.push_back({base, base + 1, base + 2, material});
+      if (looks) out.colors.triangle_look.push_back(look);
       return;
     }
     const glm::vec3 ab = 0.5f * (w[0] + w[1]), bc = 0.5f * (w[1] + w[2]), ca = 0.5f * (w[2] + w[0]);
     glm::vec3 pieces[4][3] = {{w[0], ab, ca}, {ab, w[1], bc}, {ca, bc, w[2]}, {ab, bc, ca}};
-    for (auto& piece : pieces) split(piece, material);
+    const CornerColor cab = mid(c[0], c[1]), cbc = mid(c[1], c[2]), cca = mid(c[2], c[0]);
+    const CornerColor colors[4][3] = {{c[0], cab, cca}, {cab, c[1], cbc}, {cca, cbc, c[2]}, {cab, cbc, cca}};
+    for (int k = 0; k < 4; ++k) split(pieces[k], colors[k], material, look);
   }
 };
 
@@ -107,15 +133,33 @@ std::optional<TriangleSoup> split_oversized_triangles(const TriangleSoup& soup, 
 
   TriangleSoup out;
   out.positions = soup.positions;
+  // Colours: pieces get their parent's look, and their new vertices the colour and UV interpolated as
+  // their positions are.
+  const SoupColors& colors = soup.colors;
+  out.colors.vertex_rgba = colors.vertex_rgba;
+  out.colors.vertex_uv = colors.vertex_uv;
+  out.colors.looks = colors.looks;
+  out.colors.textures = colors.textures;
   Splitter splitter{m, grid, cull, out};
-  for (const glm::uvec4& t : soup.triangles) {
+  splitter.rgba = !colors.vertex_rgba.empty();
+  splitter.uv = !colors.vertex_uv.empty();
+  splitter.looks = !colors.triangle_look.empty();
+  for (size_t i = 0; i < soup.triangles.size(); ++i) {
+    const glm::uvec4& t = soup.triangles[i];
+    const uint32_t look = splitter.looks ? colors.triangle_look[i] : 0u;
     if (!needs_work(t)) {
       out.triangles.push_back(t);
+      if (splitter.looks) out.colors.triangle_look.push_back(look);
       continue;
     }
     glm::vec3 w[3] = {glm::vec3(soup.positions[t.x]), glm::vec3(soup.positions[t.y]),
                       glm::vec3(soup.positions[t.z])};
-    splitter.split(w, t.w);
+    CornerColor c[3];
+    for (int k = 0; k < 3; ++k) {
+      if (splitter.rgba) c[k].rgba = colors.vertex_rgba[t[k]];
+      if (splitter.uv) c[k].uv = colors.vertex_uv[t[k]];
+    }
+    splitter.split(w, c, t.w, look);
   }
   return out;
 }
