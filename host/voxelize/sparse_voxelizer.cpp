@@ -141,13 +141,19 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
     // 2. the slots: the rank index of the brick bits, and the flag a kernel sets for a voxel outside them.
     build_rank_index(cl_, brick_grid_);
     const uint64_t slots = brick_grid_.voxels_set;
-    const uint64_t slab_bytes = brick_grid_.device_bytes() + slots * per_slot;
+    const uint64_t slab_bytes = (table_words + 1) * 8 + slots * per_slot;
     if ((slab_bytes > budget || slots * per_slot > 2 * cl_.device().max_allocation) && layers > 1) {
       slab_layers = std::max<uint32_t>(1, layers / 2);  // too many bricks for one slab: halve and redo
       continue;
     }
     cl_.queue().enqueueFillBuffer(brick_grid_.ranked.buffer, cl_ulong(0), table_words * 8, 8);
     sparse.bricks_marked += slots;
+    // The rank index holds the brick bits too (VOXR_RANKED): the host reads the bits now and the device
+    // drops them before the slots are allocated, so the fine pass holds the table once.
+    brick_bits_host.resize(table_words);
+    cl_.download(brick_grid_.occ.buffer, brick_bits_host.data(), table_words * 4, "readback brick bits");
+    brick_grid_.occ.release();
+    const uint64_t table_bytes = (table_words + 1) * 8;
 
     // 3. fine pass into the slots.
     const uint32_t first_slice = first_layer * kBrickEdge;
@@ -167,10 +173,13 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
       local.work_items += fine_stats.work_items;
       local.batches += fine_stats.batches;
       local.margin = fine_stats.margin;
-      const uint64_t grid_bytes = brick_grid_.device_bytes() + slots_.device_bytes();
+      const uint64_t grid_bytes = table_bytes + slots_.device_bytes();
       sparse.peak_grid_bytes = std::max(sparse.peak_grid_bytes, grid_bytes);
-      sparse.peak_device_bytes = std::max(sparse.peak_device_bytes,
-                                          grid_bytes + fine_stats.device_bytes + coarse_stats.device_bytes);
+      // The coarse pass held the brick bits beside the table; the fine pass holds the slots instead.
+      const uint64_t coarse_phase = table_words * 4 + table_bytes;
+      sparse.peak_device_bytes =
+          std::max(sparse.peak_device_bytes,
+                   std::max(grid_bytes, coarse_phase) + fine_stats.device_bytes + coarse_stats.device_bytes);
       // 4. read back: the slab's brick bits, its slots and channels.
       progress("readback");
       cl_ulong missing = 0;
@@ -178,8 +187,6 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
       if (missing)
         throw InternalError(
             "a voxel fell outside the bricks the coarse pass marked (the coarse margin is short)");
-      brick_bits_host.resize(table_words);
-      cl_.download(brick_grid_.occ.buffer, brick_bits_host.data(), table_words * 4, "readback brick bits");
       part = read_back(cl_, slots_);
     }
     // Marked bricks in slot order are the set brick bits in linear order; keep those with a set voxel.
