@@ -120,6 +120,8 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
          bricks.x, bricks.y, per_layer >> 20, budget >> 20);
 
   VoxelizeStats local;
+  uint64_t sliced =
+      0;  // triangles the slabs' fine passes gave to the slice path (a triangle in two slabs twice)
   SparseStats sparse;
   sparse.memory_budget = budget;
   std::vector<uint32_t> brick_bits_host;
@@ -168,7 +170,7 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
       fine_->run(mesh, grid, options.surface_only(),
                  SliceWindow{first_slice, slices, 0, &brick_grid_.ranked.buffer}, slots_, fine_stats);
       local.triangles = fine_stats.triangles;
-      local.direct_triangles += fine_stats.direct_triangles;
+      sliced += fine_stats.triangles - fine_stats.direct_triangles;
       local.copies += fine_stats.copies;
       local.work_items += fine_stats.work_items;
       local.batches += fine_stats.batches;
@@ -216,6 +218,8 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
   sparse.bricks_kept = result.bricks();
 
   const Profiler::Split split = cl_.profiler().since(profile_start);
+  // One slab: the triangles the direct pass took; several: those no slab gave to the slice path, at least.
+  local.direct_triangles = local.triangles - std::min(local.triangles, sliced);
   local.voxels_set = result.voxels_set;
   local.triangles_split = mesh.triangles_split();
   local.device_bytes = sparse.peak_device_bytes;
