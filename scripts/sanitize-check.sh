@@ -38,4 +38,8 @@ cmake --build "$build" -j"$(nproc)" --target voxr voxr_core voxr_io voxr_tests
 # --repeat until-pass:2: LeakSanitizer's own tracer has crashed at exit once in three full runs while PoCL's
 # threads were being stopped ("Tracer caught signal 11 ... LeakSanitizer has encountered a fatal error", after
 # the test itself passed); a test that fails twice is a finding.
+# The kernels are the same sources with the same options as in the Release tree: when its PoCL cache exists
+# (CI runs the Release suite first), the sanitized tests reuse its compiled kernels instead of compiling every
+# program again (PoCL keys its cache by source, options and device, so a stale entry cannot be picked up).
+if [ -z "${POCL_CACHE_DIR:-}" ] && [ -d build/pocl-cache ]; then export POCL_CACHE_DIR="$PWD/build/pocl-cache"; fi
 cd "$build" && ctest --output-on-failure -j2 --timeout 900 --repeat until-pass:2
