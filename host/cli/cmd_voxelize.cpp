@@ -210,6 +210,8 @@ int run_voxelize(const VoxelizeArgs& args) {
   for (const std::string& w : scene.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
   TriangleSoup soup = take_scene_triangles(scene);
   const size_t degenerate = validate_soup(soup, scene.source);
+  if (options.channels.has(Channel::kColor) && soup.colors.empty())
+    fmt::print(stderr, "{}voxr: warning: {} has no colours; the color channel is white\n", cr, scene.source);
   const Bounds bounds = soup.bounds();
 
   GridRequest request = scene.grid;

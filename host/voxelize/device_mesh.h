@@ -8,6 +8,7 @@
 #include "cl/cl_runtime.h"
 #include "core/grid_spec.h"
 #include "core/triangle_soup.h"
+#include "voxelize/device_colors.h"
 #include "voxelize/triangle_splitter.h"
 
 namespace voxr {
@@ -36,6 +37,10 @@ class DeviceMesh {
   uint64_t triangles_split() const { return triangles_split_; }  // set by upload_mesh
   double upload_ms() const { return upload_ms_; }                // profiled transfer time
   bool in_place() const { return in_place_; }                    // the device reads the host arrays
+  // The colour channel's inputs, when attached (nullptr: the mesh voxelizes white). They must describe the
+  // same triangles (the soup this mesh was uploaded from, unsplit).
+  const DeviceColors* colors() const { return colors_.get(); }
+  void attach_colors(std::shared_ptr<const DeviceColors> colors) { colors_ = std::move(colors); }
 
  private:
   friend std::unique_ptr<DeviceMesh> upload_split_mesh(ClRuntime&, const TriangleSoup&, const GridSpec&,
@@ -49,6 +54,7 @@ class DeviceMesh {
   double upload_ms_ = 0.0;
   bool in_place_ = false;
   std::shared_ptr<const TriangleSoup> pieces_;  // the split soup the buffers may use in place
+  std::shared_ptr<const DeviceColors> colors_;
 };
 
 // Splits the triangles too long for the exact predicates on `grid` (triangle_splitter.h, `cull` says which

@@ -117,8 +117,17 @@ VoxelGrid Voxelizer::run(const TriangleSoup& soup, const GridSpec& grid, const V
   const auto start = Clock::now();
   options.validate();
   if (options.progress) options.progress("upload");
-  const DeviceMesh mesh =
+  DeviceMesh mesh =
       upload_mesh(cl_, soup, grid, options.solid ? SplitCull::kColumns : SplitCull::kGrid, bounds);
+  if (options.channels.has(Channel::kColor) && !soup.colors.empty()) {
+    // The split pieces do not carry the colours (triangle_splitter.h): refuse rather than colour them wrong.
+    if (mesh.triangles_split() > 0)
+      fail(
+          "the color channel cannot be computed when triangles are split for the grid ({} triangles longer "
+          "than {} voxels); lower the resolution or drop --bounds",
+          mesh.triangles_split(), kSplitExtentVoxels);
+    mesh.attach_colors(std::make_shared<const DeviceColors>(cl_, soup, "the mesh"));
+  }
   // A CPU device sets the occupancy bits straight into the result's (zero) pages.
   BitWords occ;
   if (cl_.device().host_memory) {
