@@ -299,7 +299,17 @@ TEST(ColorChannel, WritersAndTheSparseGridCarryIt) {
   // .vti: a UInt8 array of 4 components.
   write_volume(g, dir / "g.vti");
   const std::string vti = slurp(dir / "g.vti");
-  EXPECT_NE(vti.find("<DataArray type=\"UInt8\" Name=\"color\" NumberOfComponents=\"4\""), std::string::npos);
+  const size_t array = vti.find("<DataArray type=\"UInt8\" Name=\"color\" NumberOfComponents=\"4\"");
+  ASSERT_NE(array, std::string::npos);
+  // Its appended block: a 64-bit byte count, then voxel (0, 0, 0)'s RGBA.
+  const size_t offset_at = vti.find("offset=\"", array) + 8;
+  const size_t offset = std::stoul(vti.substr(offset_at, vti.find('"', offset_at) - offset_at));
+  const size_t block = vti.find("<AppendedData encoding=\"raw\">\n   _") + 34 + offset;
+  ASSERT_LE(block + 12, vti.size());
+  uint64_t bytes = 0;
+  std::memcpy(&bytes, vti.data() + block, 8);
+  EXPECT_EQ(bytes, 4u * 25u);
+  EXPECT_EQ(vti.substr(block + 8, 4), std::string("\xbf\x20\x20\xff", 4));
   // .nrrd: a sibling uchar 4-vector file whose voxel (0, 0, 0) holds the colour.
   write_volume(g, dir / "g.nrrd");
   const std::string nrrd = slurp(dir / "g.color.nrrd");
