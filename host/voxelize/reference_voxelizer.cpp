@@ -144,9 +144,8 @@ VoxelGrid reference_voxelize(const TriangleSoup& soup, const GridSpec& grid, Ras
           v.nsum += glm::ivec3(n[0], n[1], n[2]);
           v.material = std::max(v.material, t.material);
           if (colored) {
-            long centre[3];
-            vox_voxel_centre(&params, int(i), int(j), int(k), centre);
-            const uint32_t rgba = vox_color_sample(&color, centre, tables.texels.data());
+            const uint32_t rgba = vox_color_sample(&color, vox_voxel_centre(&params, int(i), int(j), int(k)),
+                                                   tables.texels.data());
             for (int q = 0; q < 4; ++q) v.rgba[q] += (rgba >> (8 * q)) & 255u;
           }
         }

@@ -34,62 +34,84 @@
 #define VOXC_ONE 65536 /* fixed-point barycentric one */
 #define VOXC_WHITE 0xffffffffu
 
+/* A voxel centre in the snapped triangles' fixed point (scalars: PoCL keeps private arrays in memory). */
+typedef struct VoxCentre {
+  long x, y, z;
+} VoxCentre;
+
 /* The centre of voxel (i, j, k) in the snapped triangles' fixed point: the one place that maps a voxel index
  * to a position for the colour sample (a grid window's first slab would be added here). */
-inline void vox_voxel_centre(const VoxGridParams* grid, int i, int j, int k, long c[3]) {
+inline VoxCentre vox_voxel_centre(const VoxGridParams* grid, int i, int j, int k) {
   (void)grid;
-  c[0] = (long)i * VOXR_SUBVOXEL + VOXR_SUBVOXEL / 2;
-  c[1] = (long)j * VOXR_SUBVOXEL + VOXR_SUBVOXEL / 2;
-  c[2] = (long)k * VOXR_SUBVOXEL + VOXR_SUBVOXEL / 2;
+  VoxCentre c;
+  c.x = (long)i * VOXR_SUBVOXEL + VOXR_SUBVOXEL / 2;
+  c.y = (long)j * VOXR_SUBVOXEL + VOXR_SUBVOXEL / 2;
+  c.z = (long)k * VOXR_SUBVOXEL + VOXR_SUBVOXEL / 2;
+  return c;
 }
 
-/* One triangle's colour inputs, set up once per triangle (or copy). */
+/* One triangle's colour inputs, set up once per triangle (or copy); scalar members only. */
 typedef struct VoxColorTri {
-  long v0[3];                       /* snapped v0, fixed point */
-  float e1[3], e2[3];               /* v1 - v0, v2 - v0 */
-  float d11, d12, d22;              /* e1.e1, e1.e2, e2.e2 */
-  uint rgba[3];                     /* vertex colours */
-  float u[3], v[3];                 /* texture coordinates */
-  uint factor;                      /* the look's factor */
-  uint texel_offset, width, height; /* the look's texture (width 0: none) */
+  long ox, oy, oz;                    /* snapped v0, fixed point */
+  float e1x, e1y, e1z, e2x, e2y, e2z; /* v1 - v0, v2 - v0 */
+  float d11, d12, d22;                /* e1.e1, e1.e2, e2.e2 */
+  uint rgba0, rgba1, rgba2;           /* vertex colours */
+  float s0, s1, s2, t0, t1, t2;       /* texture coordinates (u, v) */
+  uint factor;                        /* the look's factor */
+  uint texel_offset, width, height;   /* the look's texture (width 0: none) */
+  int is_flat;                        /* one colour everywhere (equal vertex colours, no texture) ... */
+  uint flat_rgba;                     /* ... which is this one */
 } VoxColorTri;
 
-inline float vox_color_dot(const float a[3], float x, float y, float z) {
-  return (a[0] * x + a[1] * y) + a[2] * z;
+inline float vox_color_dot(float ax, float ay, float az, float x, float y, float z) {
+  return (ax * x + ay * y) + az * z;
 }
 
 /* The geometry of the snapped triangle (x_c, y_c, z_c) for c = 0, 1, 2. */
 inline void vox_color_geometry(VoxColorTri* c, long x0, long y0, long z0, long x1, long y1, long z1, long x2,
                                long y2, long z2) {
-  c->v0[0] = x0;
-  c->v0[1] = y0;
-  c->v0[2] = z0;
-  c->e1[0] = (float)(x1 - x0);
-  c->e1[1] = (float)(y1 - y0);
-  c->e1[2] = (float)(z1 - z0);
-  c->e2[0] = (float)(x2 - x0);
-  c->e2[1] = (float)(y2 - y0);
-  c->e2[2] = (float)(z2 - z0);
-  c->d11 = vox_color_dot(c->e1, c->e1[0], c->e1[1], c->e1[2]);
-  c->d12 = vox_color_dot(c->e1, c->e2[0], c->e2[1], c->e2[2]);
-  c->d22 = vox_color_dot(c->e2, c->e2[0], c->e2[1], c->e2[2]);
+  c->ox = x0;
+  c->oy = y0;
+  c->oz = z0;
+  c->e1x = (float)(x1 - x0);
+  c->e1y = (float)(y1 - y0);
+  c->e1z = (float)(z1 - z0);
+  c->e2x = (float)(x2 - x0);
+  c->e2y = (float)(y2 - y0);
+  c->e2z = (float)(z2 - z0);
+  c->d11 = vox_color_dot(c->e1x, c->e1y, c->e1z, c->e1x, c->e1y, c->e1z);
+  c->d12 = vox_color_dot(c->e1x, c->e1y, c->e1z, c->e2x, c->e2y, c->e2z);
+  c->d22 = vox_color_dot(c->e2x, c->e2y, c->e2z, c->e2x, c->e2y, c->e2z);
+}
+
+inline uint vox_color_mul(uint f, uint t, uint v, int shift) {
+  const uint a = (f >> shift) & 255u, b = (t >> shift) & 255u, c = (v >> shift) & 255u;
+  return ((a * b * c + 32512u) / 65025u) << shift;
+}
+
+/* The base colour of factor f, texel t and vertex colour v, per component. */
+inline uint vox_color_combine(uint f, uint t, uint v) {
+  return vox_color_mul(f, t, v, 0) | vox_color_mul(f, t, v, 8) | vox_color_mul(f, t, v, 16) |
+         vox_color_mul(f, t, v, 24);
 }
 
 /* The colour inputs of mesh triangle `triangle` with vertex indices a, b, c (VoxColorParams says how many
- * entries each array holds; missing entries are white, no texture coordinates, no look). */
+ * entries each array holds; missing entries are white, no texture coordinates, no look). A triangle with
+ * three equal vertex colours and no texture has one colour everywhere: the interpolation returns it exactly,
+ * ((65536 c + 2^15) >> 16 = c), so vox_color_sample skips the closest point. */
 inline void vox_color_fetch(VoxColorTri* t, VoxColorParams p, uint a, uint b, uint c, uint triangle,
                             VOXC_GLOBAL const uint* vertex_rgba, VOXC_GLOBAL const float* vertex_uv,
                             VOXC_GLOBAL const uint* triangle_look, VOXC_GLOBAL const VoxColorLook* looks) {
-  t->rgba[0] = a < p.vertex_rgba ? vertex_rgba[a] : VOXC_WHITE;
-  t->rgba[1] = b < p.vertex_rgba ? vertex_rgba[b] : VOXC_WHITE;
-  t->rgba[2] = c < p.vertex_rgba ? vertex_rgba[c] : VOXC_WHITE;
+  t->rgba0 = a < p.vertex_rgba ? vertex_rgba[a] : VOXC_WHITE;
+  t->rgba1 = b < p.vertex_rgba ? vertex_rgba[b] : VOXC_WHITE;
+  t->rgba2 = c < p.vertex_rgba ? vertex_rgba[c] : VOXC_WHITE;
   const int uv = a < p.vertex_uv && b < p.vertex_uv && c < p.vertex_uv;
-  t->u[0] = uv ? vertex_uv[2 * (unsigned long)a] : 0.0f;
-  t->v[0] = uv ? vertex_uv[2 * (unsigned long)a + 1] : 0.0f;
-  t->u[1] = uv ? vertex_uv[2 * (unsigned long)b] : 0.0f;
-  t->v[1] = uv ? vertex_uv[2 * (unsigned long)b + 1] : 0.0f;
-  t->u[2] = uv ? vertex_uv[2 * (unsigned long)c] : 0.0f;
-  t->v[2] = uv ? vertex_uv[2 * (unsigned long)c + 1] : 0.0f;
+  t->s0 = uv ? vertex_uv[2 * (unsigned long)a] : 0.0f;
+  t->t0 = uv ? vertex_uv[2 * (unsigned long)a + 1] : 0.0f;
+  t->s1 = uv ? vertex_uv[2 * (unsigned long)b] : 0.0f;
+  t->t1 = uv ? vertex_uv[2 * (unsigned long)b + 1] : 0.0f;
+  t->s2 = uv ? vertex_uv[2 * (unsigned long)c] : 0.0f;
+  t->t2 = uv ? vertex_uv[2 * (unsigned long)c + 1] : 0.0f;
   const uint look = p.triangle_look == 0 ? 0u : triangle < p.triangle_look ? triangle_look[triangle] : ~0u;
   t->factor = VOXC_WHITE;
   t->texel_offset = 0;
@@ -104,6 +126,8 @@ inline void vox_color_fetch(VoxColorTri* t, VoxColorParams p, uint a, uint b, ui
       t->height = l.height;
     }
   }
+  t->is_flat = t->rgba0 == t->rgba1 && t->rgba1 == t->rgba2 && t->width == 0;
+  t->flat_rgba = vox_color_combine(t->factor, VOXC_WHITE, t->rgba0);
 }
 
 /* Clamps a weight to [0, 1] (NaN to 0) and rounds it to fixed point. */
@@ -121,18 +145,15 @@ inline uint vox_color_wrap(float s, uint size) {
   return x < size ? x : size - 1;
 }
 
-inline uint vox_color_mul(uint f, uint t, uint v, int shift) {
-  const uint a = (f >> shift) & 255u, b = (t >> shift) & 255u, c = (v >> shift) & 255u;
-  return ((a * b * c + 32512u) / 65025u) << shift;
-}
-
 /* The base colour (RGBA8, R in the low byte) of triangle `c` at the point closest to `centre`. */
-inline uint vox_color_sample(const VoxColorTri* c, const long centre[3], VOXC_GLOBAL const uint* texels) {
-  const float px = (float)(centre[0] - c->v0[0]);
-  const float py = (float)(centre[1] - c->v0[1]);
-  const float pz = (float)(centre[2] - c->v0[2]);
+inline uint vox_color_sample(const VoxColorTri* c, VoxCentre centre, VOXC_GLOBAL const uint* texels) {
+  if (c->is_flat) return c->flat_rgba;
+  const float px = (float)(centre.x - c->ox);
+  const float py = (float)(centre.y - c->oy);
+  const float pz = (float)(centre.z - c->oz);
   /* Ericson's d1..d6 with p - v1 and p - v2 folded into the precomputed products. */
-  const float d1 = vox_color_dot(c->e1, px, py, pz), d2 = vox_color_dot(c->e2, px, py, pz);
+  const float d1 = vox_color_dot(c->e1x, c->e1y, c->e1z, px, py, pz);
+  const float d2 = vox_color_dot(c->e2x, c->e2y, c->e2z, px, py, pz);
   const float d3 = d1 - c->d11, d4 = d2 - c->d12;
   const float d5 = d1 - c->d12, d6 = d2 - c->d22;
   float w1 = 0.0f, w2 = 0.0f;
@@ -175,21 +196,20 @@ inline uint vox_color_sample(const VoxColorTri* c, const long centre[3], VOXC_GL
 
   uint vertex = 0;
   for (int s = 0; s < 32; s += 8) {
-    const uint q = ((uint)b0 * ((c->rgba[0] >> s) & 255u) + (uint)b1 * ((c->rgba[1] >> s) & 255u)) +
-                   (uint)b2 * ((c->rgba[2] >> s) & 255u);
+    const uint q = ((uint)b0 * ((c->rgba0 >> s) & 255u) + (uint)b1 * ((c->rgba1 >> s) & 255u)) +
+                   (uint)b2 * ((c->rgba2 >> s) & 255u);
     vertex |= ((q + (VOXC_ONE / 2)) >> 16) << s;
   }
   uint texel = VOXC_WHITE;
   if (c->width > 0) {
     const float f0 = (float)b0 * (1.0f / (float)VOXC_ONE), f1 = (float)b1 * (1.0f / (float)VOXC_ONE);
     const float f2 = (float)b2 * (1.0f / (float)VOXC_ONE);
-    const float u = (f0 * c->u[0] + f1 * c->u[1]) + f2 * c->u[2];
-    const float v = (f0 * c->v[0] + f1 * c->v[1]) + f2 * c->v[2];
+    const float u = (f0 * c->s0 + f1 * c->s1) + f2 * c->s2;
+    const float v = (f0 * c->t0 + f1 * c->t1) + f2 * c->t2;
     const uint x = vox_color_wrap(u, c->width), y = c->height - 1u - vox_color_wrap(v, c->height);
     texel = texels[(unsigned long)c->texel_offset + (unsigned long)y * c->width + x];
   }
-  return vox_color_mul(c->factor, texel, vertex, 0) | vox_color_mul(c->factor, texel, vertex, 8) |
-         vox_color_mul(c->factor, texel, vertex, 16) | vox_color_mul(c->factor, texel, vertex, 24);
+  return vox_color_combine(c->factor, texel, vertex);
 }
 
 /* The mean colour of `n` pairs from the two sums (R + G 2^32, B + A 2^32), rounding half up. */

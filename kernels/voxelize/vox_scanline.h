@@ -160,9 +160,7 @@ inline void vox_emit(VoxWriter* w, ulong linear, int i, int j, int k) {
     atom_add(w->acc + 2 * rank + 1, (long)w->normal.y + (long)w->normal.z * (1L << 32));
   if (w->channels & VOX_CH_MATERIAL) atomic_max(w->material + rank, w->material_id);
   if (w->channels & VOX_CH_COLOR) {
-    long centre[3];
-    vox_voxel_centre(w->grid, i, j, k, centre);
-    const uint rgba = vox_color_sample(&w->color, centre, w->texels);
+    const uint rgba = vox_color_sample(&w->color, vox_voxel_centre(w->grid, i, j, k), w->texels);
     atom_add(w->color_acc + 2 * rank, (long)(rgba & 255u) + (long)((rgba >> 8) & 255u) * (1L << 32));
     atom_add(w->color_acc + 2 * rank + 1, (long)((rgba >> 16) & 255u) + (long)(rgba >> 24) * (1L << 32));
   }
