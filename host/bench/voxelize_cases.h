@@ -24,7 +24,8 @@ struct VoxelizeCase {
   std::vector<std::string> cli_flags() const;
 };
 
-// occ, count-normal, all-channels, center, slice (the papers' duplication for every triangle), solid-parity,
+// occ, count-normal, all-channels, count-normal-color (the bench gives the mesh colours: color_by_position),
+// center, slice (the papers' duplication for every triangle), solid-parity,
 // solid-flood.
 const std::vector<VoxelizeCase>& voxelize_cases();
 // Throws voxr::Error naming an unknown case and listing the known ones.

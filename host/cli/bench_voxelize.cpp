@@ -121,7 +121,11 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
              "case", "voxels", "frame kernels", "frame wall", "job wall", "fresh ms.wall", "fresh process",
              "Mtri/s", "load");
   for (const std::string& name : args.meshes) {
-    const BenchMesh mesh = make_bench_mesh(name);
+    BenchMesh mesh = make_bench_mesh(name);
+    // Colour cases voxelize generated colours (the fresh processes read the OFF file: white).
+    if (std::any_of(cases.begin(), cases.end(),
+                    [](const VoxelizeCase* c) { return c->options().channels.has(Channel::kColor); }))
+      color_by_position(mesh.soup);
     const Bounds bounds = mesh.soup.bounds();
     const fs::path mesh_file = scratch / (name + ".off");
     if (args.fresh > 0) write_off(mesh.soup, mesh_file);
@@ -136,8 +140,10 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
         const GridSpec grid = fit_grid(bounds, request);
 
         // Per frame: one upload, the grid stays on the device.
-        const DeviceMesh device_mesh =
+        DeviceMesh device_mesh =
             upload_mesh(cl, mesh.soup, grid, options.solid ? SplitCull::kColumns : SplitCull::kGrid, &bounds);
+        if (options.channels.has(Channel::kColor))
+          device_mesh.attach_colors(std::make_shared<const DeviceColors>(cl, mesh.soup, name));
         DeviceVoxelGrid frame_grid;
         std::vector<double> frame_kernels, frame_wall;
         VoxelizeStats frame;
