@@ -61,6 +61,7 @@ typedef struct VoxColorTri {
   uint texel_offset, width, height;   /* the look's texture (width 0: none) */
   int is_flat;                        /* one colour everywhere (equal vertex colours, no texture) ... */
   uint flat_rgba;                     /* ... which is this one */
+  int plain;                          /* white factor and no texture: the base colour is the vertex colour */
 } VoxColorTri;
 
 inline float vox_color_dot(float ax, float ay, float az, float x, float y, float z) {
@@ -128,6 +129,8 @@ inline void vox_color_fetch(VoxColorTri* t, VoxColorParams p, uint a, uint b, ui
   }
   t->is_flat = t->rgba0 == t->rgba1 && t->rgba1 == t->rgba2 && t->width == 0;
   t->flat_rgba = vox_color_combine(t->factor, VOXC_WHITE, t->rgba0);
+  /* (255 * 255 * v + 32512) / 65025 = v: a white factor and texel leave the vertex colour as it is. */
+  t->plain = t->factor == VOXC_WHITE && t->width == 0;
 }
 
 /* Clamps a weight to [0, 1] (NaN to 0) and rounds it to fixed point. */
@@ -200,6 +203,7 @@ inline uint vox_color_sample(const VoxColorTri* c, VoxCentre centre, VOXC_GLOBAL
                    (uint)b2 * ((c->rgba2 >> s) & 255u);
     vertex |= ((q + (VOXC_ONE / 2)) >> 16) << s;
   }
+  if (c->plain) return vertex;
   uint texel = VOXC_WHITE;
   if (c->width > 0) {
     const float f0 = (float)b0 * (1.0f / (float)VOXC_ONE), f1 = (float)b1 * (1.0f / (float)VOXC_ONE);
