@@ -248,6 +248,25 @@ TEST(ColorChannel, BadTexturesAreRefusedNamingTheFile) {
   }
 }
 
+TEST(ColorChannel, TrianglesSplitForTheGridAreRefusedWithColours) {
+  // One triangle 2100 voxels long: the splitter's pieces carry no colours, so colour is refused, not wrong.
+  TriangleSoup soup = rgb_triangle();
+  const GridSpec grid = test::unit_grid({2100, 8, 2});
+  soup.positions[1] = {2100.0f, 0.0f, 0.5f, 1.0f};
+  try {
+    run_device(soup, grid, "color");
+    FAIL() << "colour on split triangles was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot be computed when triangles are split"), std::string::npos)
+        << e.what();
+  }
+  // Without colours the pieces are white, as the whole triangle would be.
+  soup.colors = SoupColors{};
+  const VoxelGrid white = run_device(soup, grid, "color");
+  ASSERT_GT(white.voxels_set, 0u);
+  EXPECT_EQ(std::set<uint32_t>(white.color.begin(), white.color.end()), std::set<uint32_t>{0xffffffffu});
+}
+
 // ---- palette, writers, sparse grid -----------------------------------------------------------------------
 
 TEST(ColorPalette, FewColoursAreKeptAndManyAreCutByTheMedian) {

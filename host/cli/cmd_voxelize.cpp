@@ -412,7 +412,7 @@ Command add_voxelize(CLI::App& app) {
       "conservative (default: every voxel the triangle touches, a guaranteed superset) or center (the "
       "papers' pixel-centre rule)");
   sub->add_option("--channels", args->channels,
-                  "comma list of occ,count,normal,material (inside comes with --solid)")
+                  "comma list of occ,count,normal,material,color (inside comes with --solid)")
       ->capture_default_str();
   add_device_option(*sub, args->device);
   add_report_options(*sub, args->report, args->profile, args->quiet, "counts, grid, memory and times");
