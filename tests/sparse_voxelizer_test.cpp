@@ -28,6 +28,7 @@ std::string compare_sparse(const SparseVoxelGrid& expected, const SparseVoxelGri
   if (expected.voxels_set != actual.voxels_set) return "voxels_set differs";
   if (expected.count != actual.count) return "count differs";
   if (expected.material != actual.material) return "material differs";
+  if (expected.color != actual.color) return "color differs";
   if (expected.normal_sum.size() != actual.normal_sum.size()) return "normal sums differ in size";
   for (size_t i = 0; i < expected.normal_sum.size(); ++i)
     if (expected.normal_sum[i] != actual.normal_sum[i]) return fmt::format("normal sum {} differs", i);
@@ -103,6 +104,23 @@ TEST(SparseVoxelizer, BunnyEqualsDense) {
   options.channels = ChannelSet::parse("occ,count,normal,material");
   const GridSpec grid = test::fitted(soup, 200);
   expect_sparse_equals_dense(soup, grid, options, budget_for_layers(grid, 4), "bunny", 7);
+}
+
+TEST(SparseVoxelizer, ColourEqualsDense) {
+  // Vertex colours from positions on a torus over a floor, in slabs of one brick layer.
+  TriangleSoup soup = make_torus();
+  test::add_square(soup, -0.6f, -1.6f, 1.6f, 2);
+  soup.colors.vertex_rgba.resize(soup.positions.size());
+  for (size_t v = 0; v < soup.positions.size(); ++v) {
+    const glm::vec4 p = soup.positions[v];
+    soup.colors.vertex_rgba[v] = uint32_t(int(p.x * 80.0f) & 255) | uint32_t(int(p.y * 80.0f) & 255) << 8 |
+                                 uint32_t(int(p.z * 80.0f) & 255) << 16 | 0xff000000u;
+  }
+  const GridSpec grid = test::fitted(soup, 70);
+  VoxelizeOptions options;
+  options.channels = ChannelSet::parse("occ,count,color");
+  expect_sparse_equals_dense(soup, grid, options, budget_for_layers(grid, 1), "coloured torus+floor",
+                             brick_dims_of(grid.dims).z);
 }
 
 TEST(SparseVoxelizer, RefusesWhatNeedsDenseGrids) {

@@ -50,6 +50,8 @@ std::string compare_grids(const VoxelGrid& expected, const VoxelGrid& actual, fl
         note(linear, fmt::format("count {} vs {}", expected.count[r], actual.count[r]));
       if (!expected.material.empty() && expected.material[r] != actual.material.at(r))
         note(linear, fmt::format("material {} vs {}", expected.material[r], actual.material[r]));
+      if (!expected.color.empty() && expected.color[r] != actual.color.at(r))
+        note(linear, fmt::format("color {:08x} vs {:08x}", expected.color[r], actual.color[r]));
       if (!expected.normal_sum.empty() && expected.normal_sum[r] != actual.normal_sum.at(r))
         note(linear, fmt::format("normal sum ({},{},{}) vs ({},{},{})", expected.normal_sum[r].x,
                                  expected.normal_sum[r].y, expected.normal_sum[r].z, actual.normal_sum[r].x,

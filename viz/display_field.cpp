@@ -30,6 +30,8 @@ ChannelKind channel_kind(const std::string& name) {
       return ChannelKind::kMaterial;
     case Channel::kInside:
       return ChannelKind::kInside;
+    case Channel::kColor:
+      return ChannelKind::kColor;
   }
   return ChannelKind::kGeneric;
 }
@@ -70,7 +72,10 @@ DisplayField make_display_field(const Volume& volume, const std::string& array, 
   f.component = component;
   f.kind = channel_kind(array);
   if (f.kind == ChannelKind::kNormal && f.components != 3) f.kind = ChannelKind::kGeneric;
-  if ((f.kind != ChannelKind::kNormal && f.kind != ChannelKind::kGeneric) && f.components != 1)
+  if (f.kind == ChannelKind::kColor && (f.components != 4 || values->GetDataType() != VTK_UNSIGNED_CHAR))
+    f.kind = ChannelKind::kGeneric;
+  if ((f.kind != ChannelKind::kNormal && f.kind != ChannelKind::kColor && f.kind != ChannelKind::kGeneric) &&
+      f.components != 1)
     f.kind = ChannelKind::kGeneric;
 
   // The mask of set voxels.
@@ -94,6 +99,25 @@ DisplayField make_display_field(const Volume& volume, const std::string& array, 
     mask->SetValue(i, set ? 1 : 0);
   }
   f.mask = image_like(volume.image, mask);
+
+  if (f.kind == ChannelKind::kColor) {
+    // The colours as they are, transparent where no voxel is set.
+    auto rgba = vtkSmartPointer<vtkUnsignedCharArray>::New();
+    rgba->SetName(f.array.c_str());
+    rgba->SetNumberOfComponents(4);
+    rgba->SetNumberOfTuples(n);
+    for (vtkIdType i = 0; i < n; ++i) {
+      const bool set = mask->GetValue(i) != 0;
+      for (int c = 0; c < 3; ++c)
+        rgba->SetValue(4 * i + c, set ? (unsigned char)values->GetComponent(i, c) : 0);
+      rgba->SetValue(4 * i + 3, set ? 255 : 0);
+      f.set_voxels += set ? 1 : 0;
+    }
+    f.scalars = image_like(volume.image, rgba);
+    f.low = f.robust_high = 0.0;
+    f.high = 255.0;
+    return f;
+  }
 
   // The scalars: the array itself where 0 already means empty, else a float copy with a distinct empty value.
   const bool copy = f.kind == ChannelKind::kNormal || f.kind == ChannelKind::kMaterial || f.components > 1;

@@ -2,7 +2,9 @@
 // which voxels the array has no value for ("empty") hold a value below every set voxel's, and the mask of
 // set voxels. voxr's sparse channels store 0 for empty voxels, but 0 is also a material id and a normal
 // component, so material and normal components are moved to distinct empty values here; occupancy, inside
-// and count are used as they are (0 = empty already).
+// and count are used as they are (0 = empty already). voxr's color channel (RGBA8) is shown as the colours
+// themselves: its scalars are four unsigned char components, RGB as stored and alpha 255 where a voxel is set
+// and 0 where it is empty, which the views draw directly (no lookup table).
 #pragma once
 
 #include <vtkImageData.h>
@@ -16,7 +18,7 @@
 namespace voxr::view {
 
 // How an array is presented, from its name (voxr's channel names; anything else is kGeneric).
-enum class ChannelKind { kOccupancy, kInside, kCount, kNormal, kMaterial, kGeneric };
+enum class ChannelKind { kOccupancy, kInside, kCount, kNormal, kMaterial, kColor, kGeneric };
 
 ChannelKind channel_kind(const std::string& array_name);
 
@@ -25,7 +27,7 @@ struct DisplayField {
   int component = 0;   // of a multi-component array
   int components = 1;  // of the array
   ChannelKind kind = ChannelKind::kGeneric;
-  vtkSmartPointer<vtkImageData> scalars;  // one component; active scalars
+  vtkSmartPointer<vtkImageData> scalars;  // one component (kColor: RGBA unsigned char); active scalars
   vtkSmartPointer<vtkImageData> mask;     // unsigned char 0/1; active scalars
   double empty_value = 0.0;               // the scalar of empty voxels
   double low = 0.0, high = 1.0;           // range of set voxels

@@ -7,6 +7,7 @@
 #include <vtkPolyData.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 #include <cmath>
@@ -24,10 +25,16 @@ void color_by_set_voxel(vtkPolyData* surface, const DisplayField& field) {
   const double* spacing = mask->GetSpacing();
   auto* mask_values = mask->GetPointData()->GetScalars();
   auto* values = field.scalars->GetPointData()->GetScalars();
-  auto colors = vtkSmartPointer<vtkFloatArray>::New();
+  const bool direct = field.kind == ChannelKind::kColor;
+  vtkSmartPointer<vtkDataArray> colors;
+  if (direct)
+    colors = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  else
+    colors = vtkSmartPointer<vtkFloatArray>::New();
   colors->SetName("value");
   const vtkIdType n = surface->GetNumberOfPoints();
-  colors->SetNumberOfValues(n);
+  colors->SetNumberOfComponents(direct ? 3 : 1);
+  colors->SetNumberOfTuples(n);
   auto linear = [&](const int* ijk) {
     return vtkIdType((int64_t(ijk[2]) * dims[1] + ijk[1]) * dims[0] + ijk[0]);
   };
@@ -49,7 +56,8 @@ void color_by_set_voxel(vtkPolyData* surface, const DisplayField& field) {
     }
     if (between >= 0 && mask_values->GetComponent(linear(ijk), 0) == 0.0 && ijk[between] + 1 < dims[between])
       ++ijk[between];
-    colors->SetValue(p, float(values->GetComponent(linear(ijk), 0)));
+    for (int c = 0; c < colors->GetNumberOfComponents(); ++c)
+      colors->SetComponent(p, c, values->GetComponent(linear(ijk), c));
   }
   surface->GetPointData()->SetScalars(colors);
 }
@@ -86,6 +94,10 @@ void IsoView::set_field(const DisplayField& field, const TransferPreset& preset)
   color_by_set_voxel(surface, field);
   mapper_->SetInputData(surface);
   mapper_->SetLookupTable(preset.color);
+  if (field.kind == ChannelKind::kColor)
+    mapper_->SetColorModeToDirectScalars();
+  else
+    mapper_->SetColorModeToMapScalars();
 }
 
 void IsoView::set_visible(bool visible) {

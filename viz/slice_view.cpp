@@ -26,7 +26,11 @@ SliceView::SliceView(vtkRenderer* renderer, vtkMatrix4x4* to_world, const int di
 }
 
 void SliceView::set_field(const DisplayField& field, const TransferPreset& preset) {
-  property_->SetLookupTable(preset.color);
+  // A colour field is drawn as it is: RGBA unsigned char, no lookup table (window 255, level 127.5 keeps the
+  // values).
+  property_->SetLookupTable(field.kind == ChannelKind::kColor ? nullptr : preset.color.Get());
+  property_->SetColorWindow(255.0);
+  property_->SetColorLevel(127.5);
   for (auto& mapper : mappers_) mapper->SetInputData(field.scalars);
 }
 

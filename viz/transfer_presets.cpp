@@ -145,6 +145,17 @@ TransferPreset make_preset(const DisplayField& field, double opacity_scale) {
       p.categorical = true;
       break;
     }
+    case ChannelKind::kColor: {
+      // The colours are drawn directly; the volume's opacity reads the alpha component (0 empty, 255 set).
+      color.AddRGBPoint(0.0, 0.0, 0.0, 0.0);
+      color.AddRGBPoint(255.0, 1.0, 1.0, 1.0);
+      opacity.AddPoint(0.0, 0.0);
+      opacity.AddPoint(127.0, 0.0);
+      opacity.AddPoint(128.0, scaled(0.85));
+      opacity.AddPoint(255.0, scaled(0.85));
+      p.categorical = true;
+      break;
+    }
     case ChannelKind::kGeneric: {
       const double lo = field.low, hi = std::max(field.high, field.low + 1e-6);
       color.AddRGBPoint(std::min(empty, lo), kEmptyVoxel[0], kEmptyVoxel[1], kEmptyVoxel[2]);

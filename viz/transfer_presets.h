@@ -5,6 +5,7 @@
 //              opacity rising with the value, so dense regions stand out in the volume rendering
 //   normal     one component in [-1, 1]: blue-white-red
 //   material   categorical colours per id (Tableau 10)
+//   color      the voxels' own RGB (no lookup table), empty voxels transparent
 //   generic    any other array: the heat ramp over its range
 // Empty voxels (DisplayField::empty_value) are dark grey in slices and fully transparent in volume
 // renderings. Only the interior is lit: the other channels are mostly one-voxel surface shells, across

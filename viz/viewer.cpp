@@ -81,9 +81,11 @@ Viewer::Viewer(Volume volume, const ViewOptions& options) : volume_(std::move(vo
   if (!options_.screenshot.empty()) check_screenshot_path(options_.screenshot);
   if (!options_.mesh.empty())
     mesh_ = std::make_unique<MeshOverlay>(renderer_, options_.mesh, options_.mesh_style);
-  view_ = options_.view.value_or(field_.kind == ChannelKind::kOccupancy || field_.kind == ChannelKind::kInside
-                                     ? ViewKind::kIso
-                                     : ViewKind::kVolume);
+  view_ =
+      options_.view.value_or(field_.kind == ChannelKind::kOccupancy || field_.kind == ChannelKind::kInside ||
+                                     field_.kind == ChannelKind::kColor
+                                 ? ViewKind::kIso
+                                 : ViewKind::kVolume);
   world_bounds_ = world_bounds(volume_);
   hud_visible_ = options_.overlay;
 
@@ -229,7 +231,9 @@ void Viewer::apply_field() {
   volume_view_->set_field(field_, preset_);
   slice_view_->set_field(field_, preset_);
   iso_view_->set_field(field_, preset_);
-  const bool binary = field_.kind == ChannelKind::kOccupancy || field_.kind == ChannelKind::kInside;
+  // Occupancy and inside need no legend; colours are their own.
+  const bool binary = field_.kind == ChannelKind::kOccupancy || field_.kind == ChannelKind::kInside ||
+                      field_.kind == ChannelKind::kColor;
   const bool categorical = preset_.categorical && field_.kind != ChannelKind::kNormal;
   vtkDataArray* scalars = field_.scalars->GetPointData()->GetScalars();
   const bool integer = scalars->GetDataType() != VTK_FLOAT && scalars->GetDataType() != VTK_DOUBLE;

@@ -47,8 +47,10 @@ constexpr uint32_t kN = 32;
 struct Box {
   glm::uvec3 lo, hi;  // inclusive
   uint32_t count, material;
+  uint32_t color;  // RGBA8, R in the low byte
 };
-constexpr Box kBoxes[] = {{{18, 4, 6}, {29, 27, 25}, 1, 0}, {{3, 18, 6}, {13, 27, 25}, 5, 3}};
+constexpr Box kBoxes[] = {{{18, 4, 6}, {29, 27, 25}, 1, 0, 0xff1e28dcu},   // (220, 40, 30): red
+                          {{3, 18, 6}, {13, 27, 25}, 5, 3, 0xffdc3c1eu}};  // (30, 60, 220): blue
 
 // `axes` columns are the grid axes in the world; `origin` the world position of the grid's corner.
 VoxelGrid make_test_grid(const glm::mat3& axes = glm::mat3(1.0f), const glm::vec3& origin = glm::vec3(0.0f)) {
@@ -57,7 +59,7 @@ VoxelGrid make_test_grid(const glm::mat3& axes = glm::mat3(1.0f), const glm::vec
   g.spec.origin = origin;
   g.spec.voxel_size = 1.0f / kN;
   g.spec.dims = glm::uvec3(kN);
-  g.channels = ChannelSet::parse("occ,count,material");
+  g.channels = ChannelSet::parse("occ,count,material,color");
   g.occ.assign(size_t((g.spec.voxel_count() + 31) / 32), 0u);
   for (uint32_t k = 0; k < kN; ++k)
     for (uint32_t j = 0; j < kN; ++j)
@@ -69,6 +71,7 @@ VoxelGrid make_test_grid(const glm::mat3& axes = glm::mat3(1.0f), const glm::vec
             ++g.voxels_set;
             g.count.push_back(b.count);
             g.material.push_back(b.material);
+            g.color.push_back(b.color);
           }
   return g;
 }
@@ -277,7 +280,7 @@ TEST_F(ViewerTest, MaterialSlicesHaveOneColourPerMaterial) {
 }
 
 TEST_F(ViewerTest, EveryArrayAndViewRendersWithOverlayAndMesh) {
-  for (const char* array : {"occupancy", "count", "material"})
+  for (const char* array : {"occupancy", "count", "material", "color"})
     for (const char* view : {"volume", "slices", "iso"}) {
       SCOPED_TRACE(fmt::format("{} {}", array, view));
       const Picture p = screenshot(dir_, fmt::format("{}_{}", array, view),
@@ -287,6 +290,29 @@ TEST_F(ViewerTest, EveryArrayAndViewRendersWithOverlayAndMesh) {
       ASSERT_EQ(p.height, 300);
       EXPECT_FALSE(p.single_color());
     }
+}
+
+TEST_F(ViewerTest, ColorArrayIsShownAsTheVoxelsColours) {
+  // Slices draw the colours as stored (ambient 1, no lookup table) and leave empty voxels transparent.
+  const std::string front = "--array color --size 320,240 --azimuth 0 --elevation 0 --no-overlay";
+  const std::array<double, 3> red{220, 40, 30}, blue{30, 60, 220};
+  const Picture slices = screenshot(dir_, "color_slices", front + " --view slices");
+  EXPECT_LT(distance(slices.at(kInBoxA[0], kInBoxA[1]), red), 6.0) << text(slices.at(kInBoxA[0], kInBoxA[1]));
+  EXPECT_LT(distance(slices.at(kInBoxB[0], kInBoxB[1]), blue), 6.0)
+      << text(slices.at(kInBoxB[0], kInBoxB[1]));
+  EXPECT_LT(distance(slices.at(kEmptyQuarter[0], kEmptyQuarter[1]), kBackground), 6.0)
+      << text(slices.at(kEmptyQuarter[0], kEmptyQuarter[1]));
+  // Lit (iso) and composited (volume): the hue survives.
+  for (const char* view : {"iso", "volume"}) {
+    SCOPED_TRACE(view);
+    const Picture p = screenshot(dir_, fmt::format("color_{}", view), front + " --view " + view);
+    const auto a = p.at(kInBoxA[0], kInBoxA[1]), b = p.at(kInBoxB[0], kInBoxB[1]);
+    EXPECT_GT(a[0], a[1] + 60.0) << text(a);
+    EXPECT_GT(a[0], a[2] + 60.0) << text(a);
+    EXPECT_GT(b[2], b[0] + 60.0) << text(b);
+    EXPECT_GT(b[2], b[1] + 60.0) << text(b);
+    EXPECT_LT(distance(p.at(kEmptyQuarter[0], kEmptyQuarter[1]), kBackground), 6.0);
+  }
 }
 
 TEST_F(ViewerTest, KeysSwitchViewsArraysAndHelp) {

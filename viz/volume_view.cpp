@@ -23,6 +23,8 @@ VolumeView::VolumeView(vtkRenderer* renderer, vtkMatrix4x4* to_world) {
 void VolumeView::set_field(const DisplayField& field, const TransferPreset& preset) {
   mapper_->SetInputData(field.scalars);
   property_->SetColor(preset.color);
+  // A colour field's RGBA is one dependent tuple: RGB drawn directly, opacity from alpha.
+  property_->SetIndependentComponents(field.kind == ChannelKind::kColor ? 0 : 1);
   property_->SetScalarOpacity(preset.opacity);
   if (preset.categorical)
     property_->SetInterpolationTypeToNearest();

@@ -73,4 +73,16 @@ const std::vector<std::string>& default_bench_meshes() {
   return names;
 }
 
+void color_by_position(TriangleSoup& soup) {
+  const Bounds b = soup.bounds();
+  const glm::vec3 size = glm::max(b.size(), glm::vec3(1e-30f));
+  soup.colors.vertex_rgba.clear();
+  soup.colors.vertex_rgba.reserve(soup.positions.size());
+  for (const glm::vec4& p : soup.positions) {
+    const glm::vec3 t = glm::clamp((glm::vec3(p) - b.lo) / size, 0.0f, 1.0f) * 255.0f + 0.5f;
+    soup.colors.vertex_rgba.push_back(uint32_t(t.x) | (uint32_t(t.y) << 8) | (uint32_t(t.z) << 16) |
+                                      0xff000000u);
+  }
+}
+
 }  // namespace voxr

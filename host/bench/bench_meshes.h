@@ -21,6 +21,10 @@ struct BenchMesh {
 // (naming scripts/fetch-meshes.sh).
 BenchMesh make_bench_mesh(const std::string& name);
 
+// Gives every vertex of `soup` an opaque colour from its position in the soup's bounds (R, G, B = x, y, z
+// from 0 to 255), the colour benchmarks' input.
+void color_by_position(TriangleSoup& soup);
+
 // The sweep of `voxr bench voxelize` by default.
 const std::vector<std::string>& default_bench_meshes();
 

@@ -27,6 +27,7 @@ const std::vector<VoxelizeCase>& voxelize_cases() {
       {"occ", "hybrid", "conservative", "occ", ""},
       {"count-normal", "hybrid", "conservative", "occ,count,normal", ""},
       {"all-channels", "hybrid", "conservative", "occ,count,normal,material", ""},
+      {"count-normal-color", "hybrid", "conservative", "occ,count,normal,color", ""},
       {"center", "hybrid", "center", "occ", ""},
       {"slice", "slice", "conservative", "occ", ""},
       {"solid-parity", "hybrid", "conservative", "occ", "parity"},

@@ -25,8 +25,9 @@ struct VoxelizeCase {
   std::vector<std::string> cli_flags() const;
 };
 
-// occ, count-normal, all-channels, center, slice (the papers' duplication for every triangle), solid-parity,
-// solid-flood, and the sparse layout's sparse-occ and sparse-count-normal.
+// occ, count-normal, all-channels, count-normal-color (the bench gives the mesh colours: color_by_position),
+// center, slice (the papers' duplication for every triangle), solid-parity, solid-flood, and the sparse
+// layout's sparse-occ and sparse-count-normal.
 const std::vector<VoxelizeCase>& voxelize_cases();
 // Throws voxr::Error naming an unknown case and listing the known ones.
 const VoxelizeCase& find_voxelize_case(const std::string& name);

@@ -14,6 +14,8 @@ static_assert(sizeof(VoxGridParams) == 88);
 static_assert(sizeof(CopyBox) == 8);
 static_assert(sizeof(CopyRecord) == 8);
 static_assert(sizeof(VoxSnappedTriangle) == 48);
+static_assert(sizeof(VoxColorParams) == 16);
+static_assert(sizeof(VoxColorLook) == 16);
 static_assert(sizeof(VoxSolidLayout) == 32);
 static_assert(sizeof(VoxGridView) == 80);
 static_assert(sizeof(RenderMaterial) == 48);

@@ -133,7 +133,11 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
              "mesh", "res", "case", "voxels", "frame kernels", "frame wall", "job wall", "fresh ms.wall",
              "fresh process", "Mtri/s", "dev B/v", "host B/v", "RSS MiB", "load");
   for (const std::string& name : args.meshes) {
-    const BenchMesh mesh = make_bench_mesh(name);
+    BenchMesh mesh = make_bench_mesh(name);
+    // Colour cases voxelize generated colours (the fresh processes read the OFF file: white).
+    if (std::any_of(cases.begin(), cases.end(),
+                    [](const VoxelizeCase* c) { return c->options().channels.has(Channel::kColor); }))
+      color_by_position(mesh.soup);
     const Bounds bounds = mesh.soup.bounds();
     const fs::path mesh_file = scratch / (name + ".off");
     if (args.fresh > 0) write_off(mesh.soup, mesh_file);
@@ -168,8 +172,10 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
           }
         } else {
           // Per frame: one upload, the grid stays on the device.
-          const DeviceMesh device_mesh = upload_mesh(
+          DeviceMesh device_mesh = upload_mesh(
               cl, mesh.soup, grid, options.solid ? SplitCull::kColumns : SplitCull::kGrid, &bounds);
+          if (options.channels.has(Channel::kColor))
+            device_mesh.attach_colors(std::make_shared<const DeviceColors>(cl, mesh.soup, name));
           DeviceVoxelGrid frame_grid;
           for (int r = 0; r < args.warmup + args.repeat; ++r) {
             voxelizer.run(device_mesh, grid, options, frame_grid, &frame);

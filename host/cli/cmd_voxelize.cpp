@@ -281,6 +281,8 @@ int run_voxelize(const VoxelizeArgs& args) {
   for (const std::string& w : scene.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
   TriangleSoup soup = take_scene_triangles(scene);
   const size_t degenerate = validate_soup(soup, scene.source);
+  if (options.channels.has(Channel::kColor) && soup.colors.empty())
+    fmt::print(stderr, "{}voxr: warning: {} has no colours; the color channel is white\n", cr, scene.source);
   const Bounds bounds = soup.bounds();
 
   GridRequest request = scene.grid;
@@ -515,7 +517,7 @@ Command add_voxelize(CLI::App& app) {
       "conservative (default: every voxel the triangle touches, a guaranteed superset) or center (the "
       "papers' pixel-centre rule)");
   sub->add_option("--channels", args->channels,
-                  "comma list of occ,count,normal,material (inside comes with --solid)")
+                  "comma list of occ,count,normal,material,color (inside comes with --solid)")
       ->capture_default_str();
   add_device_option(*sub, args->device);
   add_report_options(*sub, args->report, args->profile, args->quiet, "counts, grid, memory and times");

@@ -20,6 +20,7 @@ enum class Channel : uint32_t {
   kNormal = 1u << 2,
   kMaterial = 1u << 3,
   kInside = 1u << 4,
+  kColor = 1u << 5,
 };
 
 enum class ChannelLayout {
@@ -40,7 +41,7 @@ struct ChannelInfo {
   const char* unit;  // what one value means
 };
 
-inline constexpr std::array<ChannelInfo, 5> kChannelTable = {{
+inline constexpr std::array<ChannelInfo, 6> kChannelTable = {{
     {Channel::kOcc, "occ", "occupancy", "VOX_CH_OCC", ElementType::kUInt8, 1, ChannelLayout::kDenseBits,
      "1 where the voxel meets the surface"},
     {Channel::kCount, "count", "count", "VOX_CH_COUNT", ElementType::kUInt32, 1, ChannelLayout::kSparse,
@@ -53,6 +54,10 @@ inline constexpr std::array<ChannelInfo, 5> kChannelTable = {{
      ChannelLayout::kSparse, "largest material id among the writers"},
     {Channel::kInside, "inside", "inside", "VOX_CH_INSIDE", ElementType::kUInt8, 1, ChannelLayout::kDenseBits,
      "1 where the voxel centre is inside the solid"},
+    {Channel::kColor, "color", "color", "VOX_CH_COLOR", ElementType::kUInt8, 4, ChannelLayout::kSparse,
+     "RGBA8 (R first): the mean over the (triangle, voxel) pairs of the triangle's base colour (factor x "
+     "texture x vertex colour) at its point closest to the voxel centre, averaged as stored (sRGB-encoded, "
+     "not linearised); white for a mesh without colours"},
 }};
 
 // The table entry of `c`.
@@ -74,9 +79,9 @@ struct ChannelSet {
   void remove(Channel c) {
     if (c != Channel::kOcc) bits &= ~uint32_t(c);
   }
-  // Whether a sparse channel (count, normal, material) is in the set.
+  // Whether a sparse channel (count, normal, material, color) is in the set.
   bool sparse() const;
-  // "occ,count,normal,material,inside" (any subset, any order; occ is always added). Throws voxr::Error
+  // "occ,count,normal,material,inside,color" (any subset, any order; occ is always added). Throws voxr::Error
   // naming an unknown channel and listing the known ones.
   static ChannelSet parse(std::string_view list);
   std::string to_string() const;  // table order

@@ -19,6 +19,7 @@ uint64_t DeviceVoxelGrid::device_bytes() const {
   if (channels.has(Channel::kCount)) bytes += voxels_set * 4;
   if (channels.has(Channel::kNormal)) bytes += voxels_set * 24;
   if (channels.has(Channel::kMaterial)) bytes += voxels_set * 4;
+  if (channels.has(Channel::kColor)) bytes += voxels_set * 4;
   if (has_triangle_lists) bytes += (voxels_set + 1) * 8 + list_capacity * 4;
   return bytes;
 }
@@ -137,6 +138,10 @@ VoxelGrid read_back(ClRuntime& cl, DeviceVoxelGrid& grid, BitWords* adopted_occ)
   if (grid.channels.has(Channel::kMaterial)) {
     out.material.resize(n);
     cl.download(grid.material.buffer, out.material.data(), n * 4, "readback material");
+  }
+  if (grid.channels.has(Channel::kColor)) {
+    out.color.resize(n);
+    cl.download(grid.color.buffer, out.color.data(), n * 4, "readback color");
   }
   cl.finish("reading the grid back");
   if (grid.has_rank_index) {

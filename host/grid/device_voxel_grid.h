@@ -11,6 +11,7 @@
 //   normal_sum    voxels_set x 3 int32 (fixed point, VOXR_NORMAL_ONE per writer), normal voxels_set x 3
 //                 float (unit, zero where the sum cancels);
 //   material      voxels_set uint32;
+//   color         voxels_set uint32, RGBA8 (R in the low byte);
 //   triangle lists (VoxelizeOptions::triangle_lists) list_offsets voxels_set + 1 uint64 (exclusive scan of
 //                 count; the last entry is the total of pairs), list_ids list_capacity uint32: the mesh
 //                 indices of the triangles of voxel r at [list_offsets[r], list_offsets[r + 1]), ascending.
@@ -67,7 +68,7 @@ class DeviceVoxelGrid {
   } capacities;
 
   GrowingBuffer occ, inside, ranked;
-  GrowingBuffer count, normal_sum, normal, material;
+  GrowingBuffer count, normal_sum, normal, material, color;
   GrowingBuffer list_offsets, list_ids;
 
   // Sparse storage (host/voxelize/sparse_voxelizer.h): occ holds brick_slots 8^3 bricks of 16 words each

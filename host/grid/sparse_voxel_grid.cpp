@@ -11,7 +11,7 @@ uint64_t SparseVoxelGrid::memory_bytes() const {
   return brick_index.size() * sizeof(uint64_t) + brick_bits.size() * sizeof(uint32_t) +
          brick_rank.size() * sizeof(uint64_t) + count.size() * sizeof(uint32_t) +
          normal_sum.size() * sizeof(glm::ivec3) + normal.size() * sizeof(glm::vec3) +
-         material.size() * sizeof(uint32_t);
+         material.size() * sizeof(uint32_t) + color.size() * sizeof(uint32_t);
 }
 
 bool SparseVoxelGrid::occupied(uint32_t i, uint32_t j, uint32_t k) const {
@@ -32,8 +32,9 @@ SparseVoxelGrid to_sparse(const VoxelGrid& dense) {
   out.brick_dims = brick_dims_of(dense.spec.dims);
   const glm::uvec3 d = dense.spec.dims, bd = out.brick_dims;
   const bool has_count = !dense.count.empty(), has_sum = !dense.normal_sum.empty(),
-             has_normal = !dense.normal.empty(), has_material = !dense.material.empty();
-  const bool any_channel = has_count || has_sum || has_normal || has_material;
+             has_normal = !dense.normal.empty(), has_material = !dense.material.empty(),
+             has_color = !dense.color.empty();
+  const bool any_channel = has_count || has_sum || has_normal || has_material || has_color;
 
   // One layer of bricks (8 voxel slices) at a time: its bits, and for each of its voxels the dense rank.
   const size_t layer_bricks = size_t(bd.x) * bd.y;
@@ -78,6 +79,7 @@ SparseVoxelGrid to_sparse(const VoxelGrid& dense) {
           if (has_sum) out.normal_sum.push_back(dense.normal_sum[r]);
           if (has_normal) out.normal.push_back(dense.normal[r]);
           if (has_material) out.material.push_back(dense.material[r]);
+          if (has_color) out.color.push_back(dense.color[r]);
         }
     }
   }
@@ -99,7 +101,7 @@ VoxelGrid to_dense(const SparseVoxelGrid& sparse) {
   });
   out.voxels_set = sparse.voxels_set;
   const bool any_channel = !sparse.count.empty() || !sparse.normal_sum.empty() || !sparse.normal.empty() ||
-                           !sparse.material.empty();
+                           !sparse.material.empty() || !sparse.color.empty();
   if (!any_channel) return out;
   // Dense rank of a voxel: the set bits of the words before its own, and of its word below it.
   std::vector<uint64_t> before(out.occ.size());
@@ -112,6 +114,7 @@ VoxelGrid to_dense(const SparseVoxelGrid& sparse) {
   out.normal_sum.resize(sparse.normal_sum.size());
   out.normal.resize(sparse.normal.size());
   out.material.resize(sparse.material.size());
+  out.color.resize(sparse.color.size());
   sparse.for_each_set([&](uint32_t i, uint32_t j, uint32_t k, uint64_t r) {
     const uint64_t l = sparse.spec.linear_index(i, j, k);
     const uint64_t d =
@@ -120,6 +123,7 @@ VoxelGrid to_dense(const SparseVoxelGrid& sparse) {
     if (!sparse.normal_sum.empty()) out.normal_sum[d] = sparse.normal_sum[r];
     if (!sparse.normal.empty()) out.normal[d] = sparse.normal[r];
     if (!sparse.material.empty()) out.material[d] = sparse.material[r];
+    if (!sparse.color.empty()) out.color[d] = sparse.color[r];
   });
   return out;
 }

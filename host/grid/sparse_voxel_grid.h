@@ -38,7 +38,7 @@ inline glm::uvec3 brick_dims_of(const glm::uvec3& dims) {
 
 struct SparseVoxelGrid {
   GridSpec spec;
-  ChannelSet channels;  // occ, count, normal, material (no inside: the solid fill runs on dense grids)
+  ChannelSet channels;  // occ, count, normal, material, color (no inside: the solid fill runs on dense grids)
   glm::uvec3 brick_dims{0};
   std::vector<uint64_t> brick_index;  // linear brick index of each stored brick, increasing
   std::vector<uint32_t> brick_bits;   // kBrickWords per stored brick
@@ -50,6 +50,7 @@ struct SparseVoxelGrid {
   std::vector<glm::ivec3> normal_sum;  // fixed point, kNormalOne per unit normal of each triangle
   std::vector<glm::vec3> normal;       // normalized normal_sum (zero where the sum cancels)
   std::vector<uint32_t> material;
+  std::vector<uint32_t> color;  // RGBA8 (R in the low byte)
 
   size_t bricks() const { return brick_index.size(); }
   // The brick's (bx, by, bz) from its linear brick index.

@@ -31,6 +31,7 @@ struct VoxelGrid {
   std::vector<glm::ivec3> normal_sum;  // fixed point, kNormalOne per unit normal of each triangle
   std::vector<glm::vec3> normal;       // normalized normal_sum (zero where the sum cancels)
   std::vector<uint32_t> material;      // largest material id among the triangles that wrote the voxel
+  std::vector<uint32_t> color;         // RGBA8 (R in the low byte): mean base colour (channel_table.h)
 
   // Dense interior bits, laid out like occ, when channels has kInside (else empty): voxels whose centre a
   // solid mode judges inside (host/voxelize/solid_fill.h).

@@ -15,6 +15,7 @@ void check_grid_layout(const VoxelGrid& grid) {
     VOXR_CHECK_EQ(grid.occ[words - 1] >> tail, 0u);
   if (grid.channels.has(Channel::kCount)) VOXR_CHECK_EQ(uint64_t(grid.count.size()), grid.voxels_set);
   if (grid.channels.has(Channel::kMaterial)) VOXR_CHECK_EQ(uint64_t(grid.material.size()), grid.voxels_set);
+  if (grid.channels.has(Channel::kColor)) VOXR_CHECK_EQ(uint64_t(grid.color.size()), grid.voxels_set);
   if (grid.channels.has(Channel::kNormal))
     VOXR_CHECK(grid.normal.size() == grid.voxels_set || grid.normal_sum.size() == grid.voxels_set);
 }

@@ -24,20 +24,22 @@ std::string vec_text(const Vec& v) {
   return fmt::format("({},{},{})", v.x, v.y, v.z);
 }
 
-// `type` is the NRRD type name; `vector` adds a leading 3-vector axis.
-std::string nrrd_header(const GridSpec& spec, const char* type, bool vector, const char* content) {
+// `type` is the NRRD type name; `components` > 1 adds a leading N-vector axis.
+std::string nrrd_header(const GridSpec& spec, const char* type, uint32_t components, const char* content) {
+  const bool vector = components > 1;
   const char* pre = vector ? "none " : "";
   std::string h = "NRRD0004\n";
   h += "# Complete NRRD file format specification at:\n# http://teem.sourceforge.net/nrrd/format.html\n";
   h += fmt::format("content: {}\n", content);
   h += fmt::format("type: {}\n", type);
   h += fmt::format("dimension: {}\n", vector ? 4 : 3);
-  h += fmt::format("sizes: {}{} {} {}\n", vector ? "3 " : "", spec.dims.x, spec.dims.y, spec.dims.z);
+  h += fmt::format("sizes: {}{} {} {}\n", vector ? fmt::format("{} ", components) : "", spec.dims.x,
+                   spec.dims.y, spec.dims.z);
   // After `sizes`: VTK's vtkNrrdReader resets the dimension to 3 on reading `space`.
   h += "space: right-anterior-superior\n";
   h += fmt::format("space directions: {}{} {} {}\n", pre, vec_text(spec.axes[0] * spec.voxel_size),
                    vec_text(spec.axes[1] * spec.voxel_size), vec_text(spec.axes[2] * spec.voxel_size));
-  h += fmt::format("kinds: {}domain domain domain\n", vector ? "3-vector " : "");
+  h += fmt::format("kinds: {}domain domain domain\n", vector ? fmt::format("{}-vector ", components) : "");
   h += fmt::format("centers: {}cell cell cell\n", pre);
   h += "endian: little\n";
   h += "encoding: raw\n";
@@ -77,20 +79,20 @@ std::vector<fs::path> write_nrrd(const VoxelGrid& grid, const fs::path& out) {
 
   std::vector<std::unique_ptr<AtomicFile>> files;
   files.push_back(std::make_unique<AtomicFile>(out));
-  files.back()->write(nrrd_header(spec, "uint8", false, content(Channel::kOcc).c_str()));
+  files.back()->write(nrrd_header(spec, "uint8", 1, content(Channel::kOcc).c_str()));
   write_dense<uint8_t>(*files.back(), grid, 1, [](uint8_t* v, uint64_t) { *v = 1; });
   files.back()->close();
 
   if (grid.channels.has(Channel::kCount)) {
     files.push_back(std::make_unique<AtomicFile>(nrrd_channel_path(out, Channel::kCount)));
-    files.back()->write(nrrd_header(spec, "uint32", false, content(Channel::kCount).c_str()));
+    files.back()->write(nrrd_header(spec, "uint32", 1, content(Channel::kCount).c_str()));
     write_dense<uint32_t>(*files.back(), grid, 1, [&](uint32_t* v, uint64_t r) { *v = grid.count[r]; });
     files.back()->close();
   }
   if (grid.channels.has(Channel::kNormal)) {
     const NormalChannel normal(grid);
     files.push_back(std::make_unique<AtomicFile>(nrrd_channel_path(out, Channel::kNormal)));
-    files.back()->write(nrrd_header(spec, "float", true, content(Channel::kNormal).c_str()));
+    files.back()->write(nrrd_header(spec, "float", 3, content(Channel::kNormal).c_str()));
     write_dense<float>(*files.back(), grid, 3, [&](float* v, uint64_t r) {
       const glm::vec3 n = normal(r);
       v[0] = n.x;
@@ -101,14 +103,22 @@ std::vector<fs::path> write_nrrd(const VoxelGrid& grid, const fs::path& out) {
   }
   if (grid.channels.has(Channel::kMaterial)) {
     files.push_back(std::make_unique<AtomicFile>(nrrd_channel_path(out, Channel::kMaterial)));
-    files.back()->write(nrrd_header(spec, "uint32", false, content(Channel::kMaterial).c_str()));
+    files.back()->write(nrrd_header(spec, "uint32", 1, content(Channel::kMaterial).c_str()));
     write_dense<uint32_t>(*files.back(), grid, 1, [&](uint32_t* v, uint64_t r) { *v = grid.material[r]; });
+    files.back()->close();
+  }
+  if (grid.channels.has(Channel::kColor)) {
+    files.push_back(std::make_unique<AtomicFile>(nrrd_channel_path(out, Channel::kColor)));
+    files.back()->write(nrrd_header(spec, "uint8", 4, content(Channel::kColor).c_str()));
+    write_dense<uint8_t>(*files.back(), grid, 4, [&](uint8_t* v, uint64_t r) {
+      for (int q = 0; q < 4; ++q) v[q] = uint8_t(grid.color[r] >> (8 * q));
+    });
     files.back()->close();
   }
   if (grid.channels.has(Channel::kInside)) {
     VOXR_CHECK_EQ(grid.inside.size(), grid.occ.size());
     files.push_back(std::make_unique<AtomicFile>(nrrd_channel_path(out, Channel::kInside)));
-    files.back()->write(nrrd_header(spec, "uint8", false, content(Channel::kInside).c_str()));
+    files.back()->write(nrrd_header(spec, "uint8", 1, content(Channel::kInside).c_str()));
     write_dense_bits(*files.back(), grid.inside, spec.voxel_count());
     files.back()->close();
   }

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "io/color_palette.h"
 #include "io/grid_encoding.h"
 #include "util/error.h"
 
@@ -80,6 +81,9 @@ fs::path write_vox(const VoxelGrid& grid, const fs::path& out) {
   check_grid_layout(grid);
 
   const bool has_material = grid.channels.has(Channel::kMaterial);
+  // The color channel wins over material: its palette is the median cut of the voxels' colours.
+  const bool has_color = grid.channels.has(Channel::kColor);
+  const ColorPalette palette = has_color ? median_cut_palette(grid.color, 255) : ColorPalette{};
   // At most 256^3 voxels: the XYZI payload (<= 64 MiB) is built in memory.
   std::vector<uint8_t> xyzi;
   xyzi.reserve(size_t(grid.voxels_set) * 4);
@@ -88,7 +92,9 @@ fs::path write_vox(const VoxelGrid& grid, const fs::path& out) {
     const glm::uvec3 ijk(uint32_t(linear % row), uint32_t(linear / row % spec.dims.y),
                          uint32_t(linear / slice));
     const glm::uvec3 v = vox_coords(ijk, spec.dims);
-    const uint32_t colour = has_material ? 1 + grid.material[rank] % 255 : 1;
+    const uint32_t colour = has_color      ? 1 + palette.entry_of(grid.color[rank])
+                            : has_material ? 1 + grid.material[rank] % 255
+                                           : 1;
     xyzi.insert(xyzi.end(), {uint8_t(v.x), uint8_t(v.y), uint8_t(v.z), uint8_t(colour)});
   });
 
@@ -111,7 +117,11 @@ fs::path write_vox(const VoxelGrid& grid, const fs::path& out) {
 
   write_chunk_header(file, "RGBA", 256 * 4, 0);
   for (uint32_t i = 0; i < 256; ++i) {
-    const auto rgba = i < 255 ? palette_colour(i + 1) : std::array<uint8_t, 4>{0, 0, 0, 255};
+    std::array<uint8_t, 4> rgba = i < 255 ? palette_colour(i + 1) : std::array<uint8_t, 4>{0, 0, 0, 255};
+    if (has_color) {
+      const uint32_t c = i < palette.entries.size() ? palette.entries[i] : 0xff000000u;
+      rgba = {uint8_t(c), uint8_t(c >> 8), uint8_t(c >> 16), uint8_t(c >> 24)};
+    }
     file.write(rgba.data(), rgba.size());
   }
   file.commit();

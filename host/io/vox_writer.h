@@ -1,7 +1,9 @@
 // MagicaVoxel .vox output (version 150): "VOX " 150, then a MAIN chunk whose children are SIZE (three
 // int32), XYZI (int32 count, then x, y, z, colour index bytes per set voxel) and RGBA (256 colours; entry i
-// is colour index i + 1). Each axis holds at most 256 voxels. Colour index = 1 + material % 255 when the
-// grid has the material channel, else 1.
+// is colour index i + 1). Each axis holds at most 256 voxels. With the color channel, the palette is the
+// median cut of the voxels' colours (io/color_palette.h, at most 255 entries; unused entries opaque black)
+// and a voxel's index is 1 + its colour's entry; else colour index = 1 + material % 255 when the grid has the
+// material channel, else 1.
 //
 // Axes: MagicaVoxel is right-handed with z up; voxr scenes are right-handed with y up. A voxel (x, y, z)
 // is written at vox (x, Dz-1-z, y): a rotation of +90 degrees about x, so y-up scenes stand upright and

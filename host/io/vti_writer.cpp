@@ -108,6 +108,11 @@ fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
       case Channel::kMaterial:
         write_dense<uint32_t>(file, grid, 1, [&](uint32_t* v, uint64_t r) { *v = grid.material[r]; });
         break;
+      case Channel::kColor:
+        write_dense<uint8_t>(file, grid, 4, [&](uint8_t* v, uint64_t r) {
+          for (int q = 0; q < 4; ++q) v[q] = uint8_t(grid.color[r] >> (8 * q));
+        });
+        break;
       case Channel::kInside: {
         constexpr uint64_t kChunk = uint64_t(1) << 20;
         std::vector<uint8_t> buffer(size_t(std::min(n, kChunk)));

@@ -8,6 +8,7 @@
 #include "cl/cl_runtime.h"
 #include "core/grid_spec.h"
 #include "core/triangle_soup.h"
+#include "voxelize/device_colors.h"
 #include "voxelize/triangle_splitter.h"
 
 namespace voxr {
@@ -36,6 +37,15 @@ class DeviceMesh {
   uint64_t triangles_split() const { return triangles_split_; }  // set by upload_mesh
   double upload_ms() const { return upload_ms_; }                // profiled transfer time
   bool in_place() const { return in_place_; }                    // the device reads the host arrays
+  // The colour channel's inputs, when attached (nullptr: the mesh voxelizes white). They must describe the
+  // same triangles: the soup this mesh was uploaded from, or its split pieces (soup_for_colors).
+  const DeviceColors* colors() const { return colors_.get(); }
+  void attach_colors(std::shared_ptr<const DeviceColors> colors) { colors_ = std::move(colors); }
+  // The soup whose triangles this mesh holds: `uploaded` itself, or the split pieces upload_mesh made of it
+  // (their colours interpolated by the splitter, triangle_splitter.h).
+  const TriangleSoup& soup_for_colors(const TriangleSoup& uploaded) const {
+    return pieces_ ? *pieces_ : uploaded;
+  }
 
  private:
   friend std::unique_ptr<DeviceMesh> upload_split_mesh(ClRuntime&, const TriangleSoup&, const GridSpec&,
@@ -49,6 +59,7 @@ class DeviceMesh {
   double upload_ms_ = 0.0;
   bool in_place_ = false;
   std::shared_ptr<const TriangleSoup> pieces_;  // the split soup the buffers may use in place
+  std::shared_ptr<const DeviceColors> colors_;
 };
 
 // Splits the triangles too long for the exact predicates on `grid` (triangle_splitter.h, `cull` says which

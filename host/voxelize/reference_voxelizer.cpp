@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <map>
 
+#include "vox_color.h"
+#include "voxelize/device_colors.h"
+#include "voxelize/grid_params.h"
+
 namespace voxr {
 
 namespace {
@@ -101,11 +105,26 @@ VoxelGrid reference_voxelize(const TriangleSoup& soup, const GridSpec& grid, Ras
     uint32_t count = 0;
     glm::ivec3 nsum{0};
     uint32_t material = 0;
+    uint64_t rgba[4] = {0, 0, 0, 0};  // colour component sums
   };
   std::map<uint64_t, Attr> voxels;
+  // Colour: the device's tables and sample (kernels/common/vox_color.h), summed as the kernels do.
+  const bool colored = channels.has(Channel::kColor);
+  const ColorTables tables = colored ? color_tables(soup.colors, "the mesh") : ColorTables{};
+  const VoxGridParams params = make_grid_params(grid, uint32_t(soup.triangle_count()), uint32_t(margin));
   for (size_t tri = 0; tri < soup.triangle_count(); ++tri) {
     const SnappedTriangle t = snap_triangle(m, soup, tri);
     const std::array<int32_t, 3> n = fixed_normal(t);
+    VoxColorTri color{};
+    if (colored) {
+      vox_color_geometry(&color, t.v[0][0], t.v[0][1], t.v[0][2], t.v[1][0], t.v[1][1], t.v[1][2], t.v[2][0],
+                         t.v[2][1], t.v[2][2]);
+      const glm::uvec4& idx = soup.triangles[tri];
+      vox_color_fetch(&color, tables.params, idx.x, idx.y, idx.z, uint32_t(tri),
+                      soup.colors.vertex_rgba.data(),
+                      reinterpret_cast<const float*>(soup.colors.vertex_uv.data()),
+                      soup.colors.triangle_look.data(), tables.looks.data());
+    }
     int64_t first[3], last[3];
     for (int a = 0; a < 3; ++a) {
       const int64_t lo = std::min({t.v[0][a], t.v[1][a], t.v[2][a]});
@@ -124,6 +143,11 @@ VoxelGrid reference_voxelize(const TriangleSoup& soup, const GridSpec& grid, Ras
           v.count += 1;
           v.nsum += glm::ivec3(n[0], n[1], n[2]);
           v.material = std::max(v.material, t.material);
+          if (colored) {
+            const uint32_t rgba = vox_color_sample(&color, vox_voxel_centre(&params, int(i), int(j), int(k)),
+                                                   tables.texels.data());
+            for (int q = 0; q < 4; ++q) v.rgba[q] += (rgba >> (8 * q)) & 255u;
+          }
         }
   }
   VoxelGrid out;
@@ -140,6 +164,9 @@ VoxelGrid reference_voxelize(const TriangleSoup& soup, const GridSpec& grid, Ras
       out.normal.push_back(len > 0.0f ? glm::vec3(v.nsum) / len : glm::vec3(0.0f));
     }
     if (channels.has(Channel::kMaterial)) out.material.push_back(v.material);
+    if (colored)
+      out.color.push_back(
+          vox_color_mean(long(v.rgba[0] + (v.rgba[1] << 32)), long(v.rgba[2] + (v.rgba[3] << 32)), v.count));
   }
   return out;
 }

@@ -2,7 +2,8 @@
 // box is tested on its own with the full predicate — the 13-axis triangle/box separating-axis test in 128-bit
 // integers against the voxel box widened by the snap margin (conservative, snapped_triangle.h snap_margin),
 // or the pixel-centre/top-left/slab-depth rule (center) — on the same snapped vertices the kernels use.
-// Slow and simple on purpose: it shares no loop structure with the kernels.
+// Slow and simple on purpose: it shares no loop structure with the kernels. The color channel's sample and
+// mean are the kernels' own (kernels/common/vox_color.h, compiled here too), so colours agree bit for bit.
 #pragma once
 
 #include "core/grid_spec.h"

@@ -20,9 +20,37 @@ Defines base_defines(const VoxelizeOptions& options, bool sparse = false) {
 }
 
 // Count and normal accumulate packed, two 64-bit words per voxel (vox_scanline.h), then vox_finalize.cl
-// unpacks them.
+// unpacks them; colour needs the count too (its mean divides by it).
 bool packed_sums(const ChannelSet& channels) {
-  return channels.has(Channel::kCount) || channels.has(Channel::kNormal);
+  return channels.has(Channel::kCount) || channels.has(Channel::kNormal) || channels.has(Channel::kColor);
+}
+
+// The kernels' VOX_COLOR_PARAMS (vox_scanline.h): the mesh's colour inputs and the colour sums, or
+// placeholders (every count 0: white) when the pass has no colour or the mesh none.
+struct ColorArgs {
+  VoxColorParams params{};
+  const cl::Buffer* vertex_rgba;
+  const cl::Buffer* vertex_uv;
+  const cl::Buffer* triangle_look;
+  const cl::Buffer* looks;
+  const cl::Buffer* texels;
+  const cl::Buffer* acc;
+  void set_kernel_args(cl::Kernel& kernel, cl_uint& index) const {
+    kernel.setArg(index++, params);
+    for (const cl::Buffer* b : {vertex_rgba, vertex_uv, triangle_look, looks, texels, acc})
+      kernel.setArg(index++, *b);
+  }
+};
+
+ColorArgs color_args(const DeviceColors* colors, const cl::Buffer& acc, const cl::Buffer& dummy) {
+  if (!colors) return {{}, &dummy, &dummy, &dummy, &dummy, &dummy, &acc};
+  return {colors->tables().params,
+          &colors->vertex_rgba,
+          &colors->vertex_uv,
+          &colors->triangle_look,
+          &colors->looks,
+          &colors->texels,
+          &acc};
 }
 
 }  // namespace
@@ -110,6 +138,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
   cl::Buffer& occ = out.occupancy_for_writing(cl_);
   cl::Buffer dummy = scratch("unused channel", 4);
   const cl::Buffer& bricks = sparse ? *window.bricks : dummy;
+  const ColorArgs no_color = color_args(nullptr, dummy, dummy);
 
   // Which triangles go through the copy records: the large ones the direct pass lists (hybrid), or all.
   // With deferred counts the list's length stays on the device (`large`) and the stages after it run over
@@ -122,7 +151,7 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
     cl_.fill_zero(large, 4, "clear");
     cl::Kernel direct = cl_.kernel("vox_direct.cl", "vox_direct", with(base, "VOX_PASS", "0"));
     cl_.launch("direct", direct, tris, kGroup, grid_params(uint32_t(tris), 4, 0), mesh.positions(),
-               mesh.triangles(), list, large, occ, dummy, dummy, dummy, bricks);
+               mesh.triangles(), list, large, occ, dummy, dummy, dummy, bricks, no_color);
     uint64_t& capacity = out.capacities.listed;
     if (cl_.counts_deferred() && capacity > 0) {
       listed = std::min(capacity, tris);
@@ -160,23 +189,23 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
   // single batch is expanded once and reused by the second pass), or for the Grid baseline one launch per
   // slab.
   auto raster_listed = [&](const char* name, int pass, const VoxGridParams& params, const cl::Buffer& ranked,
-                           const cl::Buffer& acc, const cl::Buffer& material) {
+                           const cl::Buffer& acc, const cl::Buffer& material, const ColorArgs& color) {
     const Defines p = with(base, "VOX_PASS", std::to_string(pass));
     if (listed == 0) return;
     if (grid_method) {
       cl::Kernel slab_kernel = cl_.kernel("vox_grid.cl", "vox_grid", p);
       for (uint32_t k = 0; k < slices; ++k)
         cl_.launch(name, slab_kernel, listed, kGroup, params, snapped, cl_uint(k), occ, ranked, acc, material,
-                   bricks);
+                   bricks, mesh.triangles(), color);
       return;
     }
     cl::Kernel raster = cl_.kernel("vox_raster.cl", "vox_raster", p);
     copies_.for_each_batch(cl_, "expand", [&](const cl::Buffer& records, uint32_t count) {
       cl_.launch(name, raster, count, kGroup, params, snapped, records, copies_.window_records(), occ, ranked,
-                 acc, material, bricks);
+                 acc, material, bricks, mesh.triangles(), color);
     });
   };
-  raster_listed("raster", 0, params, dummy, dummy, dummy);
+  raster_listed("raster", 0, params, dummy, dummy, dummy, no_color);
 
   if (options.channels.sparse()) {
     progress("attributes");
@@ -211,17 +240,25 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
       material = out.material.ensure(cl_, set * 4, "the material channel");
       cl_.fill_zero(material, set * 4, "clear");
     }
+    // Colour: two 64-bit sums per voxel (vox_scanline.h), divided by the count in vox_finalize.cl.
+    const bool colored = options.channels.has(Channel::kColor);
+    cl::Buffer color_acc = dummy;
+    if (colored) {
+      color_acc = scratch("the colour sums", set * 16);
+      cl_.fill_zero(color_acc, set * 16, "clear");
+    }
+    const ColorArgs color = colored ? color_args(mesh.colors(), color_acc, dummy) : no_color;
     const cl::Buffer& ranked = out.ranked.buffer;
     if (hybrid && tris > 0) {
       cl::Kernel direct = cl_.kernel("vox_direct.cl", "vox_direct", with(base, "VOX_PASS", "1"));
       VoxGridParams direct_params = grid_params(uint32_t(tris), 1, channels);
       direct_params.dims[3] = uint32_t(set);
       cl_.launch("attributes", direct, tris, kGroup, direct_params, mesh.positions(), mesh.triangles(), list,
-                 dummy, occ, ranked, acc, material, bricks);
+                 dummy, occ, ranked, acc, material, bricks, color);
     }
     VoxGridParams attribute_params = params;
     attribute_params.dims[3] = uint32_t(set);
-    raster_listed("attributes", 1, attribute_params, ranked, acc, material);
+    raster_listed("attributes", 1, attribute_params, ranked, acc, material, color);
 
     if (packed) {
       const bool normals = options.channels.has(Channel::kNormal);
@@ -229,9 +266,10 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
           options.channels.has(Channel::kCount) ? out.count.ensure(cl_, set * 4, "the count channel") : dummy;
       cl::Buffer nsum = normals ? out.normal_sum.ensure(cl_, set * 12, "the normal sums") : dummy;
       cl::Buffer normal = normals ? out.normal.ensure(cl_, set * 12, "the normal channel") : dummy;
+      cl::Buffer color_out = colored ? out.color.ensure(cl_, set * 4, "the color channel") : dummy;
       cl::Kernel finalize = cl_.kernel("vox_finalize.cl", "vox_finalize", base);
       cl_.launch("finalize", finalize, set, kGroup, acc, count, nsum, normal, cl_uint(set), set_total,
-                 cl_uint(channels));
+                 cl_uint(channels), color_acc, color_out);
     }
 
     if (options.triangle_lists) {
@@ -279,9 +317,9 @@ void SliceVoxelizer::run(const DeviceMesh& mesh, const GridSpec& grid, const Vox
         direct_params.dims[3] = uint32_t(set);
         direct_params.list_capacity = uint32_t(pairs);
         cl_.launch("lists", direct, tris, kGroup, direct_params, mesh.positions(), mesh.triangles(), list,
-                   dummy, occ, ranked, cursors, ids, bricks);
+                   dummy, occ, ranked, cursors, ids, bricks, no_color);
       }
-      raster_listed("lists", 2, list_params, ranked, cursors, ids);
+      raster_listed("lists", 2, list_params, ranked, cursors, ids, no_color);
       cl::Kernel sort = cl_.kernel("vox_lists.cl", "list_sort", base);
       cl_.launch("lists", sort, set, kGroup, offsets, ids, cl_uint(set), set_total, cl_ulong(pairs));
       out.list_capacity = pairs;

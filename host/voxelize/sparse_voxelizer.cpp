@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "util/clock.h"
+#include "voxelize/device_colors.h"
 #include "voxelize/device_mesh.h"
 #include "voxelize/slice_voxelizer.h"
 #include "voxelize/snapped_triangle.h"
@@ -84,7 +85,9 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
   };
   const uint64_t budget = memory_budget ? memory_budget : default_memory_budget(cl_);
   progress("upload");
-  const DeviceMesh mesh = upload_mesh(cl_, soup, grid, SplitCull::kGrid, bounds);
+  DeviceMesh mesh = upload_mesh(cl_, soup, grid, SplitCull::kGrid, bounds);
+  if (options.channels.has(Channel::kColor) && !soup.colors.empty())
+    mesh.attach_colors(std::make_shared<const DeviceColors>(cl_, mesh.soup_for_colors(soup), "the mesh"));
   cl_.finish();
   const auto profile_start = cl_.profiler().stats();
 
@@ -211,6 +214,7 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
     append(result.normal_sum, part.normal_sum);
     append(result.normal, part.normal);
     append(result.material, part.material);
+    append(result.color, part.color);
     brick_bits_host.clear();
     ++sparse.slabs;
     first_layer += layers;

@@ -117,8 +117,10 @@ VoxelGrid Voxelizer::run(const TriangleSoup& soup, const GridSpec& grid, const V
   const auto start = Clock::now();
   options.validate();
   if (options.progress) options.progress("upload");
-  const DeviceMesh mesh =
+  DeviceMesh mesh =
       upload_mesh(cl_, soup, grid, options.solid ? SplitCull::kColumns : SplitCull::kGrid, bounds);
+  if (options.channels.has(Channel::kColor) && !soup.colors.empty())
+    mesh.attach_colors(std::make_shared<const DeviceColors>(cl_, mesh.soup_for_colors(soup), "the mesh"));
   // A CPU device sets the occupancy bits straight into the result's (zero) pages.
   BitWords occ;
   if (cl_.device().host_memory) {

@@ -82,6 +82,24 @@ typedef struct VoxSnappedTriangle {
   uint pad;
 } VoxSnappedTriangle;
 
+/* The colour channel's inputs (host/voxelize/device_colors.h, kernels/common/vox_color.h): how many entries
+ * each per-vertex / per-triangle array holds (0: absent; an index at or past the count reads as white, no
+ * texture coordinates, no look), and one record per look: its RGBA8 factor and its texture's place in the
+ * texel atlas (width 0: no texture). */
+typedef struct VoxColorParams {
+  uint vertex_rgba;   /* entries of the vertex colours */
+  uint vertex_uv;     /* entries of the vertex texture coordinates (two floats each) */
+  uint triangle_look; /* entries of the per-triangle look indices (0: every triangle has look 0) */
+  uint looks;         /* entries of the look table */
+} VoxColorParams;
+
+typedef struct VoxColorLook {
+  uint factor;       /* RGBA8, R in the low byte */
+  uint texel_offset; /* the texture's first texel in the atlas */
+  uint width;        /* texels; 0 for no texture */
+  uint height;
+} VoxColorLook;
+
 /* The rank index of a dense occupancy array: one 64-bit word per 32-bit occupancy word, holding the word
  * itself in the low half and the number of set voxels before it (its first set voxel's rank) in the high
  * half, so a voxel's rank costs one load and a popcount (grid_view.h). */
@@ -371,6 +389,10 @@ typedef struct RenderCamera {
   SIZE(CopyRecord) OFFSET(CopyRecord, triangle) OFFSET(CopyRecord, cell)                                  \
   SIZE(VoxSnappedTriangle) OFFSET(VoxSnappedTriangle, x) OFFSET(VoxSnappedTriangle, y)                    \
   OFFSET(VoxSnappedTriangle, z) OFFSET(VoxSnappedTriangle, material) OFFSET(VoxSnappedTriangle, source)  \
+  SIZE(VoxColorParams) OFFSET(VoxColorParams, vertex_rgba) OFFSET(VoxColorParams, vertex_uv)            \
+  OFFSET(VoxColorParams, triangle_look) OFFSET(VoxColorParams, looks)                                     \
+  SIZE(VoxColorLook) OFFSET(VoxColorLook, factor) OFFSET(VoxColorLook, texel_offset)                      \
+  OFFSET(VoxColorLook, width) OFFSET(VoxColorLook, height)                                                \
   SIZE(VoxSolidLayout) OFFSET(VoxSolidLayout, dims) OFFSET(VoxSolidLayout, words_x)                       \
   OFFSET(VoxSolidLayout, slice_words)                                                                     \
   SIZE(VoxGridView) OFFSET(VoxGridView, world_to_grid) OFFSET(VoxGridView, dims)                          \

@@ -13,7 +13,8 @@
  * below 2^29) and the normal axis in 64-bit. Centre mode uses vox_scan_slab.
  * in:  positions (float4), triangles (uint4: indices, material); pass 1 also the ranked occupancy words
  * out: pass 0: occupancy bits, large[] and large_count (the triangles left to the slice path, in any order);
- *      pass 1: the attribute accumulators of the small triangles' voxels; pass 2: their triangle lists
+ *      pass 1: the attribute accumulators (and with colour the colour sums, VOX_COLOR_PARAMS) of the small
+ *      triangles' voxels; pass 2: their triangle lists
  * shape: one work item per triangle. */
 #include "vox_scanline.h"
 
@@ -95,7 +96,7 @@
       for (int di = lx; di <= hx; ++di, nval += nsx) {                                                          \
         const int inside = ((ulong)nval <= nw) & VOX_CELL_TEST(y0) & VOX_CELL_TEST(y1) & VOX_CELL_TEST(y2) &    \
                            VOX_CELL_TEST(z0) & VOX_CELL_TEST(z1) & VOX_CELL_TEST(z2);                           \
-        if (inside) vox_emit(&w, row + (ulong)di);                                                              \
+        if (inside) vox_emit(&w, row + (ulong)di, fx + di, fy + dj, fz + dk);                                   \
       }                                                                                                         \
     }
 #endif
@@ -103,7 +104,7 @@
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
     VoxGridParams grid, __global const float4* positions, __global const uint4* triangles,
     __global uint* large, __global uint* large_count, __global uint* occ, __global const ulong* ranked,
-    __global long* acc, __global uint* material, __global ulong* bricks) {
+    __global long* acc, __global uint* material, __global ulong* bricks, VOX_COLOR_PARAMS) {
   const uint index = get_global_id(0);
   if (index >= grid.triangle_count) return;
   const uint4 tri = triangles[index];
@@ -152,6 +153,11 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
 
   VoxWriter w;
   vox_writer_init(&w, VOX_PASS == 2 ? index : tri.w, &grid, occ, ranked, acc, material, bricks);
+#if VOX_PASS == 1
+  if (grid.channels & VOX_CH_COLOR)
+    vox_writer_color(&w, tri, index, x0, y0, z0, x1, y1, z1, x2, y2, z2, color, vertex_rgba, vertex_uv,
+                     triangle_look, looks, texels, color_acc);
+#endif
 #if VOXR_MODE == VOXR_MODE_CONSERVATIVE
 #if VOX_PASS == 1
   if (grid.channels & VOX_CH_NORMAL)
@@ -170,7 +176,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_direct(
     for (int dk = lz; dk <= hz; ++dk)
       for (int dj = ly; dj <= hy; ++dj) {
         const ulong row = row0 + ((ulong)dk * grid.dims[1] + (ulong)dj) * grid.dims[0];
-        for (int di = lx; di <= hx; ++di) vox_emit(&w, row + (ulong)di);
+        for (int di = lx; di <= hx; ++di) vox_emit(&w, row + (ulong)di, fx + di, fy + dj, fz + dk);
       }
   } else {
     VOX_DIRECT_CONSERVATIVE_BODY

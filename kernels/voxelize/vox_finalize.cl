@@ -1,7 +1,9 @@
 /* vox_finalize.cl — unpacks the attribute accumulators of the second raster pass (vox_scanline.h):
  * acc[2r] = sum(n.x) + count * 2^32, acc[2r+1] = sum(n.y) + sum(n.z) * 2^32 (each sum below 2^31 in
  * magnitude), into the count, the fixed-point normal sum and the unit normal (zero where the sum cancels,
- * e.g. a voxel touched by both sides of a thin sheet). `channels` (ChannelSet bits) selects the outputs.
+ * e.g. a voxel touched by both sides of a thin sheet), and the colour sums (color_acc[2r] = R + G 2^32,
+ * color_acc[2r+1] = B + A 2^32) into the mean RGBA8 colour (vox_color.h vox_color_mean). `channels`
+ * (ChannelSet bits) selects the outputs.
  * entries: the length of the accumulators and outputs the host allocated; voxel_count: the set voxels (on
  * the device: either may be the smaller). shape: one work item per entry. */
 #ifndef WG_SIZE
@@ -11,15 +13,19 @@
 #ifndef VOX_CH_COUNT
 #error "vox_finalize needs the channel defines of host/grid/channel_table.h"
 #endif
+#include "vox_color.h"
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_finalize(
     __global const long* acc, __global uint* count, __global int* nsum, __global float* normal,
-    uint entries, __global const ulong* voxel_count, uint channels) {
+    uint entries, __global const ulong* voxel_count, uint channels, __global const long* color_acc,
+    __global uint* color) {
   const uint r = get_global_id(0);
   if (r >= entries || r >= *voxel_count) return;
   const long p0 = acc[2 * (ulong)r];
   const int nx = as_int((uint)p0);
-  if (channels & VOX_CH_COUNT) count[r] = (uint)((p0 - nx) / (1L << 32));
+  const uint pairs = (uint)((p0 - nx) / (1L << 32));
+  if (channels & VOX_CH_COUNT) count[r] = pairs;
+  if (channels & VOX_CH_COLOR) color[r] = vox_color_mean(color_acc[2 * (ulong)r], color_acc[2 * (ulong)r + 1], pairs);
   if (!(channels & VOX_CH_NORMAL)) return;
   const long p1 = acc[2 * (ulong)r + 1];
   const int ny = as_int((uint)p1);

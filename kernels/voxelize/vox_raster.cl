@@ -3,7 +3,8 @@
  * (vox_scanline.h: exact rules, passes, channels).
  * in:  snapped triangles (vox_setup.cl), copy records and how many (the launch may run past them); pass 1
  *      also the ranked occupancy words
- * out: occupancy bits (pass 0), the attribute accumulators (pass 1) or the triangle lists (pass 2)
+ * out: occupancy bits (pass 0), the attribute accumulators (pass 1; with colour also the colour sums, read
+ *      from the mesh triangles and VOX_COLOR_PARAMS) or the triangle lists (pass 2)
  * shape: one work item per copy record. */
 #include "vox_scanline.h"
 
@@ -14,7 +15,7 @@
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
     VoxGridParams grid, __global const VoxSnappedTriangle* snapped, __global const CopyRecord* copies, __global const uint* copy_count,
     __global uint* occ, __global const ulong* ranked, __global long* acc, __global uint* material,
-    __global ulong* bricks) {
+    __global ulong* bricks, __global const uint4* triangles, VOX_COLOR_PARAMS) {
   const uint gid = get_global_id(0);
   if (gid >= *copy_count) return;
   const CopyRecord rec = copies[gid];
@@ -31,6 +32,10 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void vox_raster(
   vox_writer_init(&w, material_id, &grid, occ, ranked, acc, material, bricks);
 #if VOX_PASS == 1
   if (grid.channels & VOX_CH_NORMAL) vox_fixed_normal(vox_tri_normal(&t), &w.normal);
+  if (grid.channels & VOX_CH_COLOR) {
+    const uint source = snapped[rec.triangle].source;
+    VOX_WRITER_COLOR_TRI(&w, triangles[source], source, &t);
+  }
 #endif
   vox_scan_slab(&t, &rule, &grid, (int)VOXR_CELL_ROW(rec.cell), row_first, row_last, 1, &w);
 }

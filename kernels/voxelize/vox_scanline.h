@@ -12,7 +12,9 @@
  * VOX_CH_NORMAL: sum, VOX_CH_MATERIAL; a runtime mask, so one program serves every subset) at each voxel's
  * rank. Count and normal sum share two 64-bit accumulators per voxel so a write
  * costs two atomics, not four: acc[2r] += n.x + 2^32 (count in the high half), acc[2r+1] += n.y + n.z*2^32.
- * Two's complement makes the packed sums exact; vox_finalize.cl unpacks them.
+ * Two's complement makes the packed sums exact; vox_finalize.cl unpacks them. VOX_CH_COLOR also counts
+ * there (the colour's mean divides by the count) and adds the triangle's colour at the voxel's centre
+ * (vox_color.h) to two more 64-bit sums per voxel, color_acc[2r] += R + G 2^32, color_acc[2r+1] += B + A 2^32.
  * VOX_PASS 2 (triangle lists, after count -> scan) visits the same (triangle, voxel) pairs as pass 1 and
  * appends the triangle's mesh index to the voxel's list: `acc` is then a 64-bit cursor per rank, started at
  * the list's offset, and `material` the id array (VoxGridParams.list_capacity entries). */
@@ -21,6 +23,7 @@
 
 #include "voxr_layout.h"
 #include "vox_triangle.h"
+#include "vox_color.h"
 
 #pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 
@@ -28,7 +31,7 @@
 #define VOX_PASS 0
 #endif
 /* VOX_SPARSE 1: the grid is stored in 8^3 bricks (host/grid/sparse_voxel_grid.h): the kernels still walk
- * voxels by their dense linear index in the grid (a window of slices, VoxGridParams.first_slice), and
+ * voxels by their cell (i, j, k) in the grid (a window of slices, VoxGridParams.first_slice), and
  * vox_emit maps it to the voxel's bit in its brick's slot: slot * 512 + x + 8 y + 64 z within the brick. The
  * slots come from `bricks`, the rank index (VOXR_RANKED) of the window's brick occupancy, one bit per brick
  * in linear brick order (the coarse pass, host/voxelize/sparse_voxelizer.h, marks every brick a voxel can be
@@ -116,16 +119,23 @@ typedef struct VoxWriter {
   uint channels; /* pass 1: the channels to accumulate */
   uint entries;  /* passes 1, 2: ranks below it have accumulator and material entries (VoxGridParams.dims[3]) */
   uint list_capacity; /* pass 2: entries of the id array */
+  const VoxGridParams* grid;    /* pass 1 colour: the voxel centres */
+  __global long* color_acc;     /* pass 1 colour: the colour sums */
+  __global const uint* texels;  /* pass 1 colour: the texture atlas */
+  VoxColorTri color;            /* pass 1 colour: the triangle's colour inputs */
 #if VOX_SPARSE
   __global ulong* bricks; /* the brick table, then the missing-brick flag at [brick_words] */
   ulong brick_words;
-  uint nx, ny, bdx, bdy;  /* voxels and bricks along x and y */
-  ulong row_lo;           /* linear index of the current row's first voxel */
-  ulong brick_row;        /* linear brick index of the current row's first brick */
-  uint local_row;         /* the row's offset inside its brick: 8 (y & 7) + 64 (z & 7) */
+  uint bdx, bdy;          /* bricks along x and y */
   ulong brick, slot;      /* the current brick and its slot (~0: not marked) */
 #endif
 } VoxWriter;
+
+/* The colour channel's kernel parameters, after the others (host: ColorArgs in slice_voxelizer.cpp). */
+#define VOX_COLOR_PARAMS                                                                                   \
+  VoxColorParams color, __global const uint *vertex_rgba, __global const float *vertex_uv,                 \
+      __global const uint *triangle_look, __global const VoxColorLook *looks, __global const uint *texels, \
+      __global long *color_acc
 
 inline void vox_flush(VoxWriter* w) {
 #if VOX_PASS == 0
@@ -136,20 +146,11 @@ inline void vox_flush(VoxWriter* w) {
 #endif
 }
 
-inline void vox_emit(VoxWriter* w, ulong linear) {
+/* Voxel (i, j, k), at linear index `linear`, is written by the writer's triangle. */
+inline void vox_emit(VoxWriter* w, ulong linear, int i, int j, int k) {
 #if VOX_SPARSE
-  if (linear - w->row_lo >= (ulong)w->nx) { /* a new row: voxels of one row come in runs */
-    const ulong row = linear / w->nx;
-    const ulong k = row / w->ny;
-    const uint j = (uint)(row - k * w->ny);
-    w->row_lo = row * w->nx;
-    w->brick_row = ((k >> 3) * w->bdy + (j >> 3)) * w->bdx;
-    w->local_row = 8u * (j & 7u) + 64u * ((uint)k & 7u);
-    w->brick = ~0UL;
-  }
-  const uint i = (uint)(linear - w->row_lo);
-  const ulong lb = w->brick_row + (i >> 3);
-  if (lb != w->brick) {
+  const ulong lb = ((ulong)(k >> 3) * w->bdy + (ulong)(j >> 3)) * w->bdx + (ulong)(i >> 3);
+  if (lb != w->brick) { /* voxels along a row share their brick */
     w->brick = lb;
     const ulong r = w->bricks[lb >> 5];
     const uint b = 1u << (uint)(lb & 31);
@@ -157,7 +158,7 @@ inline void vox_emit(VoxWriter* w, ulong linear) {
     if (w->slot == ~0UL) atomic_or((__global uint*)(w->bricks + w->brick_words), 1u);
   }
   if (w->slot == ~0UL) return;
-  linear = w->slot * 512 + w->local_row + (i & 7u);
+  linear = w->slot * 512 + (ulong)((i & 7) + 8 * (j & 7) + 64 * (k & 7));
 #endif
   const ulong word = linear >> 5;
   const uint bit = 1u << (uint)(linear & 31);
@@ -179,11 +180,17 @@ inline void vox_emit(VoxWriter* w, ulong linear) {
   if (slot < w->list_capacity) w->material[slot] = w->material_id;
   return;
 #endif
-  if (w->channels & (VOX_CH_COUNT | VOX_CH_NORMAL)) atom_add(w->acc + 2 * rank, (long)w->normal.x + (1L << 32));
+  if (w->channels & (VOX_CH_COUNT | VOX_CH_NORMAL | VOX_CH_COLOR))
+    atom_add(w->acc + 2 * rank, (long)w->normal.x + (1L << 32));
   /* A multiplication, not a shift: shifting a negative value left is undefined in OpenCL C. */
   if (w->channels & VOX_CH_NORMAL)
     atom_add(w->acc + 2 * rank + 1, (long)w->normal.y + (long)w->normal.z * (1L << 32));
   if (w->channels & VOX_CH_MATERIAL) atomic_max(w->material + rank, w->material_id);
+  if (w->channels & VOX_CH_COLOR) {
+    const uint rgba = vox_color_sample(&w->color, vox_voxel_centre(w->grid, i, j, k), w->texels);
+    atom_add(w->color_acc + 2 * rank, (long)(rgba & 255u) + (long)((rgba >> 8) & 255u) * (1L << 32));
+    atom_add(w->color_acc + 2 * rank + 1, (long)((rgba >> 16) & 255u) + (long)(rgba >> 24) * (1L << 32));
+  }
 #endif
 }
 
@@ -275,12 +282,9 @@ inline void vox_writer_init(VoxWriter* w, uint material_id, const VoxGridParams*
                             __global ulong* bricks) {
 #if VOX_SPARSE
   w->bricks = bricks;
-  w->nx = grid->dims[0];
-  w->ny = grid->dims[1];
   w->bdx = (grid->dims[0] + 7u) >> 3;
   w->bdy = (grid->dims[1] + 7u) >> 3;
   w->brick_words = ((ulong)w->bdx * w->bdy * ((grid->dims[2] + 7u) >> 3) + 31u) >> 5;
-  w->row_lo = 0UL - (ulong)w->nx; /* no row yet: linear - row_lo >= nx for every voxel */
   w->brick = ~0UL;
   w->slot = ~0UL;
 #endif
@@ -295,7 +299,29 @@ inline void vox_writer_init(VoxWriter* w, uint material_id, const VoxGridParams*
   w->entries = grid->dims[3];
   w->list_capacity = grid->list_capacity;
   w->normal = (int3)(0);
+  w->grid = grid;
+  w->color_acc = 0;
+  w->texels = 0;
 }
+
+/* Pass 1 with colour: the writer's triangle is mesh triangle `index` (vertex indices in tri.xyz), snapped to
+ * (x_c, y_c, z_c). */
+inline void vox_writer_color(VoxWriter* w, uint4 tri, uint index, long x0, long y0, long z0, long x1, long y1,
+                             long z1, long x2, long y2, long z2, VoxColorParams color,
+                             __global const uint* vertex_rgba, __global const float* vertex_uv,
+                             __global const uint* triangle_look, __global const VoxColorLook* looks,
+                             __global const uint* texels, __global long* color_acc) {
+  w->color_acc = color_acc;
+  w->texels = texels;
+  vox_color_geometry(&w->color, x0, y0, z0, x1, y1, z1, x2, y2, z2);
+  vox_color_fetch(&w->color, color, tri.x, tri.y, tri.z, index, vertex_rgba, vertex_uv, triangle_look, looks);
+}
+
+/* The same from a VoxTri's snapped vertices. */
+#define VOX_WRITER_COLOR_TRI(w, tri, index, t)                                                             \
+  vox_writer_color(w, tri, index, (t)->v[0][0], (t)->v[0][1], (t)->v[0][2], (t)->v[1][0], (t)->v[1][1],    \
+                   (t)->v[1][2], (t)->v[2][0], (t)->v[2][1], (t)->v[2][2], color, vertex_rgba, vertex_uv, \
+                   triangle_look, looks, texels, color_acc)
 
 /* Rows [row_first, row_last] of slab k of triangle t through writer w: the work of one copy. With `clip`,
  * large triangles are first clipped to the slab (float) to narrow the rows, and then to each row to narrow
@@ -368,7 +394,7 @@ inline void vox_scan_slab(const VoxTri* t, const VoxRule* rule, const VoxGridPar
     for (int i = col_first; i <= col_last; ++i) {
       int inside = 1;
       for (int q = 0; q < 7; ++q) inside &= rule->col_lo[q] <= value[q] && value[q] <= rule->col_hi[q];
-      if (inside) vox_emit(w, row_base + (ulong)i);
+      if (inside) vox_emit(w, row_base + (ulong)i, i, j, k);
       for (int q = 0; q < 7; ++q) value[q] += rule->col_ax[q] * VOX_S;
     }
 #else
@@ -381,7 +407,7 @@ inline void vox_scan_slab(const VoxTri* t, const VoxRule* rule, const VoxGridPar
     for (int i = col_first; i <= col_last; ++i) {
       const int inside = vox_coverage_next(&rule->coverage, edge) && depth_lo <= depth && depth < depth_hi;
       depth += depth_step;
-      if (inside) vox_emit(w, row_base + (ulong)i);
+      if (inside) vox_emit(w, row_base + (ulong)i, i, j, k);
     }
 #endif
   }
