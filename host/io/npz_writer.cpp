@@ -41,7 +41,9 @@ std::string npy_header(const char* descr, const std::string& shape) {
 // so it writes the temporary through a file of its own; the AtomicFile renames it into place).
 class NpzArchive {
  public:
-  explicit NpzArchive(AtomicFile& file) : file_(file) {
+  // `total` bounds the archive's size: past 4 GiB every entry is ZIP64 (an entry's local header offset may
+  // pass 4 GiB even when the entry itself is small).
+  NpzArchive(AtomicFile& file, uint64_t total) : file_(file), zip64_(total >= kZip64From) {
     zip_ = zipOpen64(file.temp_path().c_str(), APPEND_STATUS_CREATE);
     if (!zip_) fail("{}: cannot create the zip archive", file.path().string());
   }
@@ -57,7 +59,7 @@ class NpzArchive {
     zip_fileinfo info{};
     info.tmz_date.tm_year = 1980;  // a fixed date: the same grid gives the same bytes
     info.tmz_date.tm_mday = 1;
-    const int zip64 = header.size() + bytes >= 0xffffffffull ? 1 : 0;
+    const int zip64 = zip64_ || header.size() + bytes >= kZip64From ? 1 : 0;
     check(zipOpenNewFileInZip64(zip_, (name + ".npy").c_str(), &info, nullptr, 0, nullptr, 0, nullptr, 0, 0,
                                 zip64),
           "cannot start entry " + name);
@@ -92,7 +94,9 @@ class NpzArchive {
   void check(int status, const std::string& what) const {
     if (status != ZIP_OK) fail("{}: {} (minizip error {})", file_.path().string(), what, status);
   }
+  static constexpr uint64_t kZip64From = 0xffffffffull - (uint64_t(1) << 20);  // headers and directory
   AtomicFile& file_;
+  bool zip64_;
   zipFile zip_ = nullptr;
   std::string entry_;
 };
@@ -107,7 +111,12 @@ fs::path write_npz(const SparseVoxelGrid& grid, const fs::path& out) {
 
   AtomicFile file(out);
   file.close();  // minizip writes the temporary through its own handle
-  NpzArchive zip(file);
+  // Array bytes: ijk, then per voxel count 4, normal 12, material 4; the small arrays and headers well
+  // within the 1 MiB kZip64From leaves.
+  const uint64_t total =
+      n * (12 + (grid.channels.has(Channel::kCount) ? 4 : 0) +
+           (grid.channels.has(Channel::kNormal) ? 12 : 0) + (grid.channels.has(Channel::kMaterial) ? 4 : 0));
+  NpzArchive zip(file, total);
 
   // ijk a bounded chunk at a time, from the bricks.
   zip.begin("ijk", "<i4", fmt::format("({}, 3)", n), n * 3 * sizeof(int32_t));

@@ -1,6 +1,6 @@
 // NumPy .npz output: the set voxels as a sparse list, for Python (`np.load("out.npz")`). A .npz is a zip of
 // .npy arrays; voxr writes it through zlib's minizip (stored, not deflated: the arrays are written at disk
-// speed; ZIP64 entries and directory when an array or the archive passes 4 GiB).
+// speed; ZIP64 entries and directory when the archive may pass 4 GiB).
 //
 // Arrays (little endian, C order):
 //   ijk        int32   N x 3   voxel indices (i, j, k) of the N set voxels, in brick order: 8^3 bricks in

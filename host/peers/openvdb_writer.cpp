@@ -8,9 +8,7 @@
 
 #include <bit>
 #include <cerrno>
-#include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <fstream>
@@ -130,7 +128,6 @@ extern "C" bool voxr_openvdb_write(const VoxrVdbWrite* w, char* error, size_t er
                                std::to_string(w->abi_version) + ", plugin " +
                                std::to_string(VOXR_VDB_ABI_VERSION) + ")");
     openvdb::initialize();
-    const auto start = std::chrono::steady_clock::now();
     const auto xform = make_transform(*w);
     openvdb::GridPtrVec grids;
 
@@ -166,17 +163,11 @@ extern "C" bool voxr_openvdb_write(const VoxrVdbWrite* w, char* error, size_t er
       }
     }
 
-    const auto built = std::chrono::steady_clock::now();
     CheckedArchive archive;
     archive.setCompression(compression_flags(w->compression));
     openvdb::MetaMap meta;
     meta.insertMeta("creator", openvdb::StringMetadata(w->creator ? w->creator : "voxr"));
     archive.write_file(w->path, grids, meta);
-    if (std::getenv("VOXR_VDB_TIMING"))
-      std::fprintf(
-          stderr, "vdb build %.0f ms write %.0f ms\n",
-          std::chrono::duration<double, std::milli>(built - start).count(),
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - built).count());
     return true;
   } catch (const std::exception& e) {
     std::snprintf(error, error_size, "%s", e.what());
