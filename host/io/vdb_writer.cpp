@@ -20,7 +20,8 @@ namespace {
 
 uint32_t vdb_compression(const fs::path& out) {
   const char* env = std::getenv("VOXR_VDB_COMPRESSION");
-  const std::string name = env ? env : "blosc";
+  if (!env) return kVoxrVdbDefault;
+  const std::string name = env;
   if (name == "none") return kVoxrVdbNone;
   if (name == "zip") return kVoxrVdbZip;
   if (name == "blosc") return kVoxrVdbBlosc;

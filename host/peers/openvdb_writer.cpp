@@ -111,6 +111,9 @@ uint32_t compression_flags(uint32_t compression) {
       return openvdb::io::COMPRESS_ACTIVE_MASK;
     case kVoxrVdbZip:
       return openvdb::io::COMPRESS_ZIP | openvdb::io::COMPRESS_ACTIVE_MASK;
+    case kVoxrVdbDefault:
+      return openvdb::io::Archive::hasBloscCompression() ? compression_flags(kVoxrVdbBlosc)
+                                                         : compression_flags(kVoxrVdbZip);
     case kVoxrVdbBlosc:
       if (!openvdb::io::Archive::hasBloscCompression())
         throw std::runtime_error("this OpenVDB build has no Blosc compression");

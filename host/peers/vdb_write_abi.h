@@ -18,9 +18,10 @@ enum VoxrVdbValueType : uint32_t {
 };
 
 enum VoxrVdbCompression : uint32_t {
-  kVoxrVdbNone = 0,   // raw leaf buffers (active-mask compression only)
-  kVoxrVdbZip = 1,    // zlib
-  kVoxrVdbBlosc = 2,  // Blosc (LZ4), when the OpenVDB build has it (else the plugin reports an error)
+  kVoxrVdbNone = 0,     // raw leaf buffers (active-mask compression only)
+  kVoxrVdbZip = 1,      // zlib
+  kVoxrVdbBlosc = 2,    // Blosc (LZ4), when the OpenVDB build has it (else the plugin reports an error)
+  kVoxrVdbDefault = 3,  // Blosc when the OpenVDB build has it, else zip
 };
 
 // One attribute grid: voxels_set entries of `components` values in the bricks' order (brick order).
