@@ -128,11 +128,11 @@ TEST(SparseWriters, SlicesLargerThanAChunkStreamByRows) {
   // 1100 x 1000 voxels per slice > kDenseChunk: a slice is written in row ranges.
   const TempFolder folder("rows");
   GridSpec spec;
-  spec.dims = {1100, 1000, 3};
+  spec.dims = {1100, 1000, 10};  // slices 5 and 9 lie in the upper half of a brick layer
   VoxelGrid g;
   g.spec = spec;
   g.occ.assign(size_t((spec.voxel_count() + 31) / 32), 0u);
-  for (uint32_t k = 0; k < 3; ++k)
+  for (const uint32_t k : {0u, 5u, 9u})
     for (uint32_t j = 0; j < 1000; j += 37)
       for (uint32_t i = k; i < 1100; i += 101) {
         const uint64_t l = spec.linear_index(i, j, k);
