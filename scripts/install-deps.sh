@@ -8,7 +8,7 @@ packages=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers opencl-c-headers clinfo
   libglm-dev libcgal-dev libassimp-dev nlohmann-json3-dev libfmt-dev libcli11-dev
   libpng-dev libopenexr-dev libstb-dev libopenimageio-dev openimageio-tools libembree-dev libvtk9-dev
-  libgtest-dev libbenchmark-dev python3-matplotlib xvfb xauth libopenvdb-dev libboost-iostreams-dev
+  libgtest-dev libbenchmark-dev python3-matplotlib xvfb xauth libopenvdb-dev libboost-iostreams-dev libminizip-dev
   glmark2-data libcgal-demo
 )
 

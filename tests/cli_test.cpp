@@ -305,6 +305,25 @@ TEST(Cli, Table1RunsTheOpenVdbPeerWhenBuilt) {
   EXPECT_NE(csv.find(",hybrid-conservative,"), std::string::npos) << csv;
 }
 
+TEST(Cli, SparseFormatsVdbAndNpz) {
+  const fs::path mesh = write_file("tetra-sparse.obj", kTetra);
+  const fs::path npz = scratch() / "tetra.npz";
+  Result r = run("voxelize " + mesh.string() + " --res 16 -q --channels occ,count -o " + npz.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(npz).substr(0, 4), std::string("PK\x03\x04", 4));
+  // Without the OpenVDB plugin .vdb is refused before any work, in one line, and nothing is written.
+  const fs::path vdb = scratch() / "tetra.vdb";
+  r = run_with_env("VOXR_OPENVDB_PLUGIN=" + (scratch() / "no-plugin.so").string(),
+                   "voxelize " + mesh.string() + " --res 16 -q -o " + vdb.string());
+  expect_one_line_error(r, "tetra.vdb");
+  EXPECT_NE(r.err.find("OpenVDB plugin"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(vdb));
+  if (!fs::exists(fs::path(VOXR_CLI_PATH).parent_path() / "libvoxr_openvdb_peer.so")) return;
+  r = run("voxelize " + mesh.string() + " --res 16 -q -o " + vdb.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(vdb).substr(0, 4), std::string(" BDV", 4));  // OpenVDB's magic number, little endian
+}
+
 TEST(Cli, InsideChannelNeedsSolid) {
   const fs::path mesh = write_file("tetra8.obj", kTetra);
   expect_one_line_error(run("voxelize " + mesh.string() + " --channels occ,inside"), "--solid");

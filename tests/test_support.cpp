@@ -16,6 +16,8 @@ const bool kEnvironment = [] {
   setenv("POCL_CACHE_DIR", VOXR_BINARY_DIR "/pocl-cache", 0);
   setenv("VOXR_CACHE_DIR", VOXR_BINARY_DIR "/voxr-cache", 0);
   setenv("VOXR_MESH_DIR", VOXR_SOURCE_DIR "/data/meshes", 0);
+  // The OpenVDB plugin (.vdb output) is beside voxr, not beside voxr_tests.
+  setenv("VOXR_OPENVDB_PLUGIN", VOXR_BINARY_DIR "/libvoxr_openvdb_peer.so", 0);
   return true;
 }();
 }  // namespace

@@ -76,11 +76,13 @@ std::optional<ViewOptions> parse_view_options(int argc, char** argv) {
   std::string slices;
 
   CLI::App app{
-      "voxr-view: look at a voxr volume (.vti or .nrrd) as a volume rendering, three slice planes or an "
+      "voxr-view: look at a voxr volume (.vti, .nrrd or .vdb) as a volume rendering, three slice planes or "
+      "an "
       "isosurface, optionally with the source mesh overlaid. Press h in the window for the keys.",
       "voxr-view"};
   app.set_version_flag("--version", "voxr-view 0.1.0");
-  app.add_option("volume", o.volume, "volume file: .vti, or .nrrd (with its .count/.normal/... siblings)")
+  app.add_option("volume", o.volume,
+                 "volume file: .vti, .nrrd (with its .count/.normal/... siblings) or .vdb")
       ->required();
   app.add_option("--array", o.array, "array to show (default: occupancy, else the first)");
   app.add_option("--component", component, "component of a vector array: x, y, z (default x)");

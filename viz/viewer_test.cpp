@@ -500,6 +500,66 @@ void expect_one_line_error(const Result& r, const std::string& mentions) {
   EXPECT_NE(r.output.find(mentions), std::string::npos) << "expected '" << mentions << "' in: " << r.output;
 }
 
+// ---- .vdb -----------------------------------------------------------------------------------------------
+
+#ifdef VOXR_VIEW_OPENVDB
+// A .vdb (written by voxr's OpenVDB plugin) loads as the .vti of the same grid does: same shape, placement
+// and values of every array (.vdb holds no inside channel), and the same pictures.
+TEST(VdbLoad, LoadsAsTheVtiAndRendersTheSame) {
+  setenv("VOXR_OPENVDB_PLUGIN", VOXR_OPENVDB_PLUGIN, 0);
+  view::install_vtk_message_collector();
+  const fs::path dir = fs::temp_directory_path() / fmt::format("voxr_view_vdb_{}", ::getpid());
+  fs::create_directories(dir);
+  VoxelGrid grid = make_pattern_grid(glm::uvec3(9, 20, 13));
+  grid.channels.remove(Channel::kInside);
+  grid.inside.clear();
+  grid.inside_voxels = 0;
+  const glm::mat3 turn(glm::vec3(0, 1, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 0, 1));
+  grid.spec.axes = turn;
+  write_volume(grid, dir / "g.vti");
+  write_volume(grid, dir / "g.vdb");
+  const view::Volume a = view::load_volume(dir / "g.vti");
+  const view::Volume b = view::load_volume(dir / "g.vdb");
+  ASSERT_EQ(a.arrays, b.arrays);
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_EQ(a.dims(axis), b.dims(axis));
+    EXPECT_NEAR(a.voxel_size(axis), b.voxel_size(axis), 1e-7);
+    EXPECT_NEAR(a.image->GetOrigin()[axis], b.image->GetOrigin()[axis], 1e-5);
+  }
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      EXPECT_NEAR(a.to_world->GetElement(r, c), b.to_world->GetElement(r, c), 1e-5) << r << "," << c;
+  for (const std::string& name : a.arrays) {
+    vtkDataArray* x = a.image->GetPointData()->GetArray(name.c_str());
+    vtkDataArray* y = b.image->GetPointData()->GetArray(name.c_str());
+    ASSERT_NE(y, nullptr) << name;
+    EXPECT_EQ(x->GetDataType(), y->GetDataType()) << name;
+    ASSERT_EQ(x->GetNumberOfComponents(), y->GetNumberOfComponents()) << name;
+    ASSERT_EQ(x->GetNumberOfTuples(), y->GetNumberOfTuples()) << name;
+    int wrong = 0;
+    for (vtkIdType t = 0; t < x->GetNumberOfTuples(); ++t)
+      for (int c = 0; c < x->GetNumberOfComponents(); ++c)
+        wrong += x->GetComponent(t, c) != y->GetComponent(t, c);
+    EXPECT_EQ(wrong, 0) << name << ": values differ from the .vti's";
+  }
+  std::vector<Picture> pictures;
+  for (const char* file : {"g.vti", "g.vdb"}) {
+    const fs::path png = dir / fmt::format("{}.png", file);
+    const Result r =
+        run(under_xvfb(fmt::format("{} --screenshot {} --view slices --array count --size 160,120 "
+                                   "--elevation 30 --no-overlay",
+                                   quoted(dir / file), quoted(png))));
+    ASSERT_EQ(r.code, 0) << r.output;
+    pictures.push_back(read_png(png));
+  }
+  EXPECT_FALSE(pictures[0].single_color());
+  EXPECT_EQ(differing_values(pictures[0], pictures[1]), 0) << "the .vti and .vdb pictures differ";
+  std::ofstream(dir / "fake.vdb") << "hello\n";
+  expect_one_line_error(run(viewer() + " " + quoted(dir / "fake.vdb")), "cannot read the OpenVDB file");
+  remove_unless_failed(dir);
+}
+#endif
+
 TEST_F(ViewerTest, MissingFileFails) {
   expect_one_line_error(run(viewer() + " " + quoted(dir_ / "nothere.vti")), "no such file");
 }

@@ -21,6 +21,15 @@
 #include "util/error.h"
 #include "vtk_messages.h"
 
+#ifdef VOXR_VIEW_OPENVDB
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+#include <vtkFloatArray.h>
+#include <vtkIntArray.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnsignedIntArray.h>
+#endif
+
 namespace voxr::view {
 
 namespace fs = std::filesystem;
@@ -350,6 +359,178 @@ Volume load_nrrd(const fs::path& file) {
   return v;
 }
 
+// ---- .vdb ------------------------------------------------------------------------------------------------
+
+#ifdef VOXR_VIEW_OPENVDB
+
+// Index box [lo, lo + dims) of the dense image: [0, voxr_dims) for voxr's files, else the active voxels'
+// bounding box of all grids.
+struct VdbRegion {
+  openvdb::Coord lo{0, 0, 0};
+  std::array<int64_t, 3> dims{0, 0, 0};
+  uint64_t voxels() const { return uint64_t(dims[0]) * uint64_t(dims[1]) * uint64_t(dims[2]); }
+};
+
+VdbRegion vdb_region(const openvdb::GridPtrVec& grids) {
+  VdbRegion r;
+  for (const auto& g : grids)
+    if (const auto meta = g->getMetadata<openvdb::Vec3IMetadata>("voxr_dims")) {
+      for (int a = 0; a < 3; ++a) r.dims[a] = std::max<int64_t>(0, meta->value()[a]);
+      return r;
+    }
+  openvdb::CoordBBox box;
+  for (const auto& g : grids) box.expand(g->evalActiveVoxelBoundingBox());
+  if (box.empty()) return r;
+  r.lo = box.min();
+  for (int a = 0; a < 3; ++a) r.dims[a] = int64_t(box.max()[a]) - box.min()[a] + 1;
+  return r;
+}
+
+// Copies the active values of `grid` inside the region into `out` (components per voxel, linear order).
+template <typename GridT, typename Store>
+void vdb_to_dense(const GridT& grid, const VdbRegion& region, Store&& store) {
+  const openvdb::CoordBBox box(
+      region.lo,
+      region.lo + openvdb::Coord(int(region.dims[0] - 1), int(region.dims[1] - 1), int(region.dims[2] - 1)));
+  auto put = [&](const openvdb::Coord& c, const typename GridT::ValueType& v) {
+    if (!box.isInside(c)) return;
+    const openvdb::Coord d = c - region.lo;
+    store(vtkIdType((int64_t(d.z()) * region.dims[1] + d.y()) * region.dims[0] + d.x()), v);
+  };
+  for (auto it = grid.cbeginValueOn(); it; ++it) {
+    if (it.isVoxelValue()) {
+      put(it.getCoord(), *it);
+      continue;
+    }
+    openvdb::CoordBBox tile;
+    it.getBoundingBox(tile);
+    tile.intersect(box);
+    for (auto c = tile.begin(); c; ++c) put(*c, *it);
+  }
+}
+
+Volume load_vdb(const fs::path& file) {
+  openvdb::initialize();
+  openvdb::GridPtrVecPtr grids;
+  try {
+    openvdb::io::File f(file.string());
+    f.open(false);
+    grids = f.getGrids();
+    f.close();
+  } catch (const std::exception& e) {
+    fail("{}: cannot read the OpenVDB file: {}", file.string(), e.what());
+  }
+  if (!grids || grids->empty()) fail("{}: the OpenVDB file holds no grids", file.string());
+  const VdbRegion region = vdb_region(*grids);
+  if (region.voxels() == 0) fail("{}: the OpenVDB grids have no active voxels", file.string());
+
+  // The grids voxr-view shows, with the bytes of their dense arrays; the limit is checked before any copy.
+  uint64_t bytes = 0;
+  for (const auto& g : *grids) {
+    if (g->isType<openvdb::BoolGrid>() || g->isType<openvdb::MaskGrid>())
+      bytes += 1;
+    else if (g->isType<openvdb::Int32Grid>() || g->isType<openvdb::FloatGrid>())
+      bytes += 4;
+    else if (g->isType<openvdb::Vec3SGrid>())
+      bytes += 12;
+  }
+  if (bytes == 0) fail("{}: no grid voxr-view shows (bool, mask, int32, float, vec3s)", file.string());
+  if (region.voxels() * bytes > kMaxDenseVdbBytes)
+    fail(
+        "{}: {}x{}x{} voxels are {:.1f} GiB as dense arrays, more than voxr-view shows ({} GiB); write a "
+        "lower "
+        "--res, or .vti of a part (--bounds)",
+        file.string(), region.dims[0], region.dims[1], region.dims[2],
+        double(region.voxels() * bytes) / double(uint64_t(1) << 30), kMaxDenseVdbBytes >> 30);
+
+  Volume v;
+  v.source = file;
+  v.files = {file};
+  v.image = vtkSmartPointer<vtkImageData>::New();
+  v.image->SetDimensions(int(region.dims[0]), int(region.dims[1]), int(region.dims[2]));
+  const vtkIdType n = vtkIdType(region.voxels());
+  const openvdb::GridBase& first = *grids->front();
+  for (const auto& g : *grids) {
+    const std::string name = g->getName().empty() ? "grid" : g->getName();
+    if (v.image->GetPointData()->GetArray(name.c_str())) continue;
+    vtkSmartPointer<vtkDataArray> array;
+    if (const auto b = openvdb::GridBase::grid<openvdb::BoolGrid>(g)) {
+      auto a = vtkSmartPointer<vtkUnsignedCharArray>::New();
+      a->SetNumberOfValues(n);
+      a->FillValue(0);
+      vdb_to_dense(*b, region, [&](vtkIdType i, bool value) { a->SetValue(i, value ? 1 : 0); });
+      array = a;
+    } else if (const auto m = openvdb::GridBase::grid<openvdb::MaskGrid>(g)) {
+      auto a = vtkSmartPointer<vtkUnsignedCharArray>::New();
+      a->SetNumberOfValues(n);
+      a->FillValue(0);
+      vdb_to_dense(*m, region, [&](vtkIdType i, bool) { a->SetValue(i, 1); });
+      array = a;
+    } else if (const auto ig = openvdb::GridBase::grid<openvdb::Int32Grid>(g)) {
+      // voxr's uint32 channels are stored as int32, bit for bit: shown as unsigned again.
+      const ChannelInfo* info = find_channel_array(name);
+      if (info && info->type == ElementType::kUInt32) {
+        auto a = vtkSmartPointer<vtkUnsignedIntArray>::New();
+        a->SetNumberOfValues(n);
+        a->FillValue(0);
+        vdb_to_dense(*ig, region, [&](vtkIdType i, int32_t value) { a->SetValue(i, uint32_t(value)); });
+        array = a;
+      } else {
+        auto a = vtkSmartPointer<vtkIntArray>::New();
+        a->SetNumberOfValues(n);
+        a->FillValue(ig->background());
+        vdb_to_dense(*ig, region, [&](vtkIdType i, int32_t value) { a->SetValue(i, value); });
+        array = a;
+      }
+    } else if (const auto fg = openvdb::GridBase::grid<openvdb::FloatGrid>(g)) {
+      auto a = vtkSmartPointer<vtkFloatArray>::New();
+      a->SetNumberOfValues(n);
+      a->FillValue(fg->background());
+      vdb_to_dense(*fg, region, [&](vtkIdType i, float value) { a->SetValue(i, value); });
+      array = a;
+    } else if (const auto vg = openvdb::GridBase::grid<openvdb::Vec3SGrid>(g)) {
+      auto a = vtkSmartPointer<vtkFloatArray>::New();
+      a->SetNumberOfComponents(3);
+      a->SetNumberOfTuples(n);
+      const openvdb::Vec3s bg = vg->background();
+      for (int c = 0; c < 3; ++c) a->FillComponent(c, bg[c]);
+      vdb_to_dense(*vg, region,
+                   [&](vtkIdType i, const openvdb::Vec3s& value) { a->SetTypedTuple(i, value.asPointer()); });
+      array = a;
+    } else {
+      continue;  // other grid types are not shown
+    }
+    array->SetName(name.c_str());
+    v.image->GetPointData()->AddArray(array);
+  }
+  if (v.image->GetPointData()->GetNumberOfArrays() > 0)
+    v.image->GetPointData()->SetActiveScalars(v.image->GetPointData()->GetArray(0)->GetName());
+
+  // Placement from the first grid's transform (voxr writes one transform for all): image origin = world
+  // position of the region's first index, spacing = voxel size, direction = the index axes.
+  const openvdb::math::Transform& xform = first.transform();
+  if (!xform.isLinear())
+    fail("{}: the grids' transform is not linear; voxr-view shows linear ones", file.string());
+  const openvdb::Mat4d m = xform.baseMap()->getAffineMap()->getMat4();
+  const openvdb::Vec3d origin = xform.indexToWorld(region.lo);
+  double spacing[3];
+  double direction[9];  // row-major, columns are the index axes
+  for (int a = 0; a < 3; ++a) {
+    const openvdb::Vec3d axis(m(a, 0), m(a, 1), m(a, 2));
+    spacing[a] = axis.length();
+    if (spacing[a] <= 0.0) fail("{}: the grids' transform is singular", file.string());
+    for (int r = 0; r < 3; ++r) direction[r * 3 + a] = axis[r] / spacing[a];
+  }
+  v.image->SetSpacing(spacing);
+  v.image->SetOrigin(origin.x(), origin.y(), origin.z());
+  v.image->SetDirectionMatrix(direction);
+  v.to_world = take_direction(v.image);
+  order_arrays(v);
+  return v;
+}
+
+#endif  // VOXR_VIEW_OPENVDB
+
 }  // namespace
 
 Volume load_volume(const fs::path& file) {
@@ -360,10 +541,17 @@ Volume load_volume(const fs::path& file) {
     v = load_vti(file);
   else if (ext == ".nrrd")
     v = load_nrrd(file);
+#ifdef VOXR_VIEW_OPENVDB
+  else if (ext == ".vdb")
+    v = load_vdb(file);
+#else
+  else if (ext == ".vdb")
+    fail("{}: this voxr-view was built without OpenVDB (install libopenvdb-dev, rebuild)", file.string());
+#endif
   else if (ext.empty())
-    fail("{}: no extension to tell the format by (voxr-view reads .vti and .nrrd)", file.string());
+    fail("{}: no extension to tell the format by (voxr-view reads .vti, .nrrd and .vdb)", file.string());
   else
-    fail("{}: unknown volume format '{}' (voxr-view reads .vti and .nrrd)", file.string(),
+    fail("{}: unknown volume format '{}' (voxr-view reads .vti, .nrrd and .vdb)", file.string(),
          file.extension().string());
   if (v.arrays.empty()) fail("{}: holds no point-data arrays", file.string());
   if (v.image->GetNumberOfPoints() <= 0) fail("{}: the volume is empty", file.string());

@@ -69,8 +69,8 @@ std::string lower_extension(const std::string& path) {
 std::filesystem::path find_viewer(const std::string& output) {
   if (output.empty()) fail("--view needs -o OUT: the viewer opens the written volume");
   const std::string ext = lower_extension(output);
-  if (ext != ".vti" && ext != ".nrrd")
-    fail("--view: voxr-view reads .vti and .nrrd outputs, not '{}'", output);
+  if (ext != ".vti" && ext != ".nrrd" && ext != ".vdb")
+    fail("--view: voxr-view reads .vti, .nrrd and .vdb outputs, not '{}'", output);
   const std::filesystem::path viewer = executable_folder() / "voxr-view";
   std::error_code ec;
   if (!std::filesystem::exists(viewer, ec))
@@ -497,7 +497,7 @@ Command add_voxelize(CLI::App& app) {
   sub->add_option("input", args->input,
                   "mesh (" + mesh_extensions() + ") or scene file; omitted: the built-in default scene");
   sub->add_option("-o,--output", args->output,
-                  "output volume: .nrrd, .vti, .binvox (cubic: --res N gives N^3), .vox (<=256)");
+                  "output volume: .vdb (OpenVDB, sparse), .npz (sparse voxel list), .nrrd, .vti, .binvox (cubic: --res N gives N^3), .vox (<=256)");
   add_grid_option(*sub, "--res", GridKind::kVoxel, args->res)->default_str("256, or the scene's grid");
   sub->add_option("--dims", args->dims, "exact grid dimensions X,Y,Z");
   sub->add_option(
@@ -538,7 +538,7 @@ Command add_voxelize(CLI::App& app) {
   sub->add_option("--rows-per-copy", args->rows_per_copy, "rows one raster work item walks (tuning)")
       ->check(CLI::Range(1u, 4096u))
       ->capture_default_str();
-  sub->add_flag("--view", args->view, "open the written volume (.vti, .nrrd) in voxr-view");
+  sub->add_flag("--view", args->view, "open the written volume (.vti, .nrrd, .vdb) in voxr-view");
   return {sub, [args] { return run_voxelize(*args); }};
 }
 

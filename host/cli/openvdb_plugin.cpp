@@ -1,40 +1,22 @@
 #include "cli/openvdb_plugin.h"
 
-#include <dlfcn.h>
-
 #include <algorithm>
-#include <filesystem>
 
-#include "cli/process.h"
+#include "io/openvdb_module.h"
 #include "peers/openvdb_peer.h"
 #include "util/error.h"
 
 namespace voxr::cli {
 
-namespace {
-
-std::filesystem::path plugin_path() {
-  const std::filesystem::path folder = executable_folder();
-  return folder.empty() ? folder : folder / "libvoxr_openvdb_peer.so";
-}
-
-}  // namespace
-
 bool openvdb_peer_available() {
-  const std::filesystem::path plugin = plugin_path();
-  std::error_code ec;
-  return !plugin.empty() && std::filesystem::exists(plugin, ec);
+  return openvdb_module_available();
 }
 
 std::optional<Table1Peer> load_openvdb_peer() {
   if (!openvdb_peer_available()) return std::nullopt;
-  const std::filesystem::path plugin = plugin_path();
-  // Kept loaded for the life of the process (OpenVDB's registries must outlive every call).
-  void* handle = dlopen(plugin.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) fail("{}: cannot load the OpenVDB peer: {}", plugin.string(), dlerror());
-  auto* entry =
-      reinterpret_cast<decltype(&voxr_openvdb_mesh_to_volume)>(dlsym(handle, "voxr_openvdb_mesh_to_volume"));
-  if (!entry) fail("{}: no voxr_openvdb_mesh_to_volume in the OpenVDB peer", plugin.string());
+  // io/openvdb_module.h keeps the plugin loaded for the life of the process.
+  auto* entry = reinterpret_cast<decltype(&voxr_openvdb_mesh_to_volume)>(
+      openvdb_module_symbol("voxr_openvdb_mesh_to_volume"));
   return Table1Peer([entry](const TriangleSoup& soup, const GridSpec& grid, VoxelizeStats* stats) {
     const std::array<float, 12> m = grid.world_to_grid();
     VoxelGrid out;

@@ -4,6 +4,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -50,10 +51,9 @@ std::string nrrd_header(const GridSpec& spec, const char* type, uint32_t compone
 
 // Bits as uint8 0/1, a bounded chunk at a time.
 void write_dense_bits(AtomicFile& file, std::span<const uint32_t> bits, uint64_t n) {
-  constexpr uint64_t kChunk = uint64_t(1) << 20;
-  std::vector<uint8_t> buffer(size_t(std::min(n, kChunk)));
-  for (uint64_t begin = 0; begin < n; begin += kChunk) {
-    const uint64_t end = std::min(n, begin + kChunk);
+  std::vector<uint8_t> buffer(size_t(std::min(n, kDenseChunk)));
+  for (uint64_t begin = 0; begin < n; begin += kDenseChunk) {
+    const uint64_t end = std::min(n, begin + kDenseChunk);
     expand_bits(bits, begin, end, buffer.data());
     file.write(buffer.data(), size_t(end - begin));
   }
@@ -72,7 +72,11 @@ fs::path nrrd_channel_path(const fs::path& out, Channel channel) {
   return p;
 }
 
-std::vector<fs::path> write_nrrd(const VoxelGrid& grid, const fs::path& out) {
+namespace {
+
+// One writer for both grids (io/grid_encoding.h): the dense arrays stream from either.
+template <typename Grid>
+std::vector<fs::path> write_nrrd_from(const Grid& grid, const fs::path& out) {
   check_output_path(out);
   check_grid_layout(grid);
   const GridSpec& spec = grid.spec;
@@ -115,12 +119,14 @@ std::vector<fs::path> write_nrrd(const VoxelGrid& grid, const fs::path& out) {
     });
     files.back()->close();
   }
-  if (grid.channels.has(Channel::kInside)) {
-    VOXR_CHECK_EQ(grid.inside.size(), grid.occ.size());
-    files.push_back(std::make_unique<AtomicFile>(nrrd_channel_path(out, Channel::kInside)));
-    files.back()->write(nrrd_header(spec, "uint8", 1, content(Channel::kInside).c_str()));
-    write_dense_bits(*files.back(), grid.inside, spec.voxel_count());
-    files.back()->close();
+  if constexpr (std::is_same_v<Grid, VoxelGrid>) {  // the sparse grid has no inside channel
+    if (grid.channels.has(Channel::kInside)) {
+      VOXR_CHECK_EQ(grid.inside.size(), grid.occ.size());
+      files.push_back(std::make_unique<AtomicFile>(nrrd_channel_path(out, Channel::kInside)));
+      files.back()->write(nrrd_header(spec, "uint8", 1, content(Channel::kInside).c_str()));
+      write_dense_bits(*files.back(), grid.inside, spec.voxel_count());
+      files.back()->close();
+    }
   }
 
   std::vector<fs::path> written;
@@ -129,6 +135,16 @@ std::vector<fs::path> write_nrrd(const VoxelGrid& grid, const fs::path& out) {
     written.push_back(f->path());
   }
   return written;
+}
+
+}  // namespace
+
+std::vector<fs::path> write_nrrd(const VoxelGrid& grid, const fs::path& out) {
+  return write_nrrd_from(grid, out);
+}
+
+std::vector<fs::path> write_nrrd(const SparseVoxelGrid& grid, const fs::path& out) {
+  return write_nrrd_from(grid, out);
 }
 
 }  // namespace voxr

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "grid/sparse_voxel_grid.h"
 #include "grid/voxel_grid.h"
 
 namespace voxr {
@@ -16,6 +17,9 @@ namespace voxr {
 // Writes `out` and one sibling per attribute channel; returns them all, `out` first. Throws voxr::Error
 // naming the file on failure; no file of the set is renamed into place unless all were written.
 std::vector<std::filesystem::path> write_nrrd(const VoxelGrid& grid, const std::filesystem::path& out);
+// The same files from the sparse grid (byte for byte what its dense grid writes), streamed a slice at a time
+// from the bricks without a dense copy.
+std::vector<std::filesystem::path> write_nrrd(const SparseVoxelGrid& grid, const std::filesystem::path& out);
 
 // The sibling file of `out` holding `channel`: out.nrrd -> out.<channel>.nrrd.
 std::filesystem::path nrrd_channel_path(const std::filesystem::path& out, Channel channel);

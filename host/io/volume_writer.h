@@ -1,6 +1,12 @@
-// Writing a VoxelGrid to a volume file, the format chosen by the extension: .nrrd, .vti, .binvox, .vox.
-// Every file is an AtomicFile (io/atomic_file.h): it appears only once it is complete. The format writers'
-// shared plumbing is io/grid_encoding.h, below this header (the writers do not include it).
+// Writing a voxel grid to a volume file, the format chosen by the extension: .nrrd, .vti, .binvox, .vox
+// (dense formats), .vdb (OpenVDB, through the plugin of io/openvdb_module.h) and .npz (a NumPy sparse voxel
+// list). Either host grid is written: the dense VoxelGrid or the SparseVoxelGrid; for every format the sparse
+// grid writes byte for byte what the dense grid it came from writes (.vdb: the same grids and values; OpenVDB
+// puts a random UUID in each file). .nrrd and .vti stream from the bricks a slice at a time (no dense copy);
+// .vdb and .npz are sparse formats (the dense grid goes through to_sparse); .binvox and .vox, small formats,
+// go through to_dense. Every file is an AtomicFile (io/atomic_file.h): it appears only once it is complete.
+// The format writers' shared plumbing is io/grid_encoding.h, below this header (the writers do not include
+// it).
 #pragma once
 
 #include <cstdint>
@@ -20,7 +26,7 @@ namespace voxr {
 // naming `out` for an unknown extension, a missing folder, a grid the format cannot hold, or a failed write;
 // on error no partial file is left under any of the output names.
 std::vector<std::filesystem::path> write_volume(const VoxelGrid& grid, const std::filesystem::path& out);
-// The same for a grid in bricks.
+// The same for the sparse grid (no inside channel: .binvox and .vox get the surface set).
 std::vector<std::filesystem::path> write_volume(const SparseVoxelGrid& grid,
                                                 const std::filesystem::path& out);
 
@@ -29,7 +35,7 @@ std::vector<std::filesystem::path> write_volume(const SparseVoxelGrid& grid,
 void fit_request_to_format(GridRequest& request, const std::filesystem::path& out);
 
 // Everything write_volume would refuse before any work is done: folder, extension, grid size the format can
-// hold. Throws voxr::Error naming `out`.
+// hold, the OpenVDB plugin for .vdb. Throws voxr::Error naming `out`.
 void check_volume_output(const std::filesystem::path& out, const glm::uvec3& dims);
 
 }  // namespace voxr

@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <string>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -37,9 +38,9 @@ std::pair<const char*, uint64_t> vtk_type(ElementType type) {
   throw InternalError("unhandled element type");
 }
 
-}  // namespace
-
-fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
+// One writer for both grids (io/grid_encoding.h): the dense arrays stream from either.
+template <typename Grid>
+fs::path write_vti_from(const Grid& grid, const fs::path& out) {
   check_output_path(out);
   check_grid_layout(grid);
   const GridSpec& spec = grid.spec;
@@ -52,7 +53,8 @@ fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
     const auto [type, bytes] = vtk_type(info.type);
     arrays.push_back({info.channel, info.array_name, type, info.components, bytes});
   }
-  if (grid.channels.has(Channel::kInside)) VOXR_CHECK_EQ(grid.inside.size(), grid.occ.size());
+  if constexpr (std::is_same_v<Grid, VoxelGrid>)
+    if (grid.channels.has(Channel::kInside)) VOXR_CHECK_EQ(grid.inside.size(), grid.occ.size());
 
   const glm::dvec3 origin = spec.voxel_center_absolute(0, 0, 0);
   const std::string extent = fmt::format("0 {} 0 {} 0 {}", spec.dims.x - 1, spec.dims.y - 1, spec.dims.z - 1);
@@ -114,12 +116,14 @@ fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
         });
         break;
       case Channel::kInside: {
-        constexpr uint64_t kChunk = uint64_t(1) << 20;
-        std::vector<uint8_t> buffer(size_t(std::min(n, kChunk)));
-        for (uint64_t begin = 0; begin < n; begin += kChunk) {
-          const uint64_t end = std::min(n, begin + kChunk);
-          expand_bits(grid.inside, begin, end, buffer.data());
-          file.write(buffer.data(), size_t(end - begin));
+        // Dense grids only (the sparse grid has no inside channel; check_grid_layout).
+        if constexpr (std::is_same_v<Grid, VoxelGrid>) {
+          std::vector<uint8_t> buffer(size_t(std::min(n, kDenseChunk)));
+          for (uint64_t begin = 0; begin < n; begin += kDenseChunk) {
+            const uint64_t end = std::min(n, begin + kDenseChunk);
+            expand_bits(grid.inside, begin, end, buffer.data());
+            file.write(buffer.data(), size_t(end - begin));
+          }
         }
         break;
       }
@@ -128,6 +132,16 @@ fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
   file.write("\n  </AppendedData>\n</VTKFile>\n");
   file.commit();
   return out;
+}
+
+}  // namespace
+
+fs::path write_vti(const VoxelGrid& grid, const fs::path& out) {
+  return write_vti_from(grid, out);
+}
+
+fs::path write_vti(const SparseVoxelGrid& grid, const fs::path& out) {
+  return write_vti_from(grid, out);
 }
 
 }  // namespace voxr

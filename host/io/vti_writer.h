@@ -8,11 +8,15 @@
 
 #include <filesystem>
 
+#include "grid/sparse_voxel_grid.h"
 #include "grid/voxel_grid.h"
 
 namespace voxr {
 
 // Writes `grid` to `out` and returns `out`. Throws voxr::Error naming `out` on failure.
 std::filesystem::path write_vti(const VoxelGrid& grid, const std::filesystem::path& out);
+// The same file from the sparse grid (byte for byte what its dense grid writes), streamed a slice at a time
+// from the bricks without a dense copy.
+std::filesystem::path write_vti(const SparseVoxelGrid& grid, const std::filesystem::path& out);
 
 }  // namespace voxr
