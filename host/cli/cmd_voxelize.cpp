@@ -52,7 +52,7 @@ struct VoxelizeArgs {
   std::string report;
   std::string layout = "auto";
   std::string memory_budget;  // empty: from the device
-  uint32_t rows_per_copy = 4;
+  uint32_t rows_per_copy = 16;  // VoxelizeOptions::rows_per_copy
   std::optional<double> error_target;  // the surface error to meet (voxel_surface_error.h, chamfer)
   bool profile = false;
   bool quiet = false;

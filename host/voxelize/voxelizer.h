@@ -71,7 +71,7 @@ struct VoxelizeOptions {
   SlicemapSlicing slicing = SlicemapSlicing::kUniform;  // slicemap
   ChannelSet channels;                                  // surface channels; inside comes with `solid`
   std::optional<SolidMode> solid;                       // fill the interior (adds the inside channel)
-  uint32_t rows_per_copy = 4;                           // rows of a slab one raster work item walks
+  uint32_t rows_per_copy = 16;                          // rows of a slab one raster work item walks
   uint64_t record_budget_bytes = 256ull << 20;          // device memory for copy/tile records per batch
   // Slice family with the count channel: also the per-voxel triangle lists (DeviceVoxelGrid::list_offsets,
   // list_ids): count -> scan -> the raster passes again writing ids -> sort (kernels/voxelize/vox_lists.cl).
