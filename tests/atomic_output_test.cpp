@@ -30,13 +30,8 @@ namespace {
 namespace fs = std::filesystem;
 using test::TempDir;
 
+using test::listing;
 using test::slurp;
-
-std::set<std::string> listing(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
-  return names;
-}
 
 // Lowers this process's file size limit to `bytes` (SIGXFSZ ignored) until destroyed.
 class FileSizeLimit {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_support.h"
 #include "grid/sparse_voxel_grid.h"
 #include "io/color_palette.h"
 #include "io/volume_writer.h"
@@ -26,6 +27,8 @@
 
 namespace voxr {
 namespace {
+
+using test::slurp;
 
 namespace fs = std::filesystem;
 
@@ -297,13 +300,6 @@ TEST(ColorPalette, FewColoursAreKeptAndManyAreCutByTheMedian) {
     for (int q2 = 0; q2 < 3; ++q2)
       EXPECT_LE(std::abs(int((c >> (8 * q2)) & 255) - int((e >> (8 * q2)) & 255)), 128) << std::hex << c;
   }
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 TEST(ColorChannel, WritersAndTheSparseGridCarryIt) {

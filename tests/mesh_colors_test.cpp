@@ -85,7 +85,7 @@ std::string base64(const std::string& bytes) {
 
 TEST(TextureReader, DecodesPngTgaBmpToRgba8) {
   TempDir dir;
-  const MeshTexture png = read_texture(write_png(dir, "t.png"), "mesh.obj");
+  const SoupTexture png = read_texture(write_png(dir, "t.png"), "mesh.obj");
   EXPECT_EQ(png.width, 2u);
   EXPECT_EQ(png.height, 2u);
   EXPECT_EQ(png.texels, std::vector<uint32_t>(kTexels, kTexels + 4));
@@ -108,7 +108,7 @@ TEST(TextureReader, DecodesPngTgaBmpToRgba8) {
                                                                 rgba(100, 100, 100), rgba(250, 250, 250)}));
   const fs::path j = dir.path() / "t.jpg";
   ASSERT_TRUE(stbi_write_jpg(j.c_str(), 2, 2, 3, rgb, 90));
-  const MeshTexture jpeg = read_texture(j, "m");
+  const SoupTexture jpeg = read_texture(j, "m");
   EXPECT_EQ(jpeg.width * jpeg.height, 4u);
 }
 

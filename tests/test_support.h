@@ -13,6 +13,7 @@
 #include <fstream>
 #include <optional>
 #include <random>
+#include <set>
 #include <string>
 
 #include "cl/cl_runtime.h"
@@ -81,6 +82,7 @@ class TempDir {
   }
   ~TempDir() {
     std::error_code ec;
+    fs::permissions(path_, fs::perms::owner_all, ec);  // a test may have made it read-only
     fs::remove_all(path_, ec);
   }
   fs::path write(const std::string& name, const std::string& content) const {
@@ -94,6 +96,13 @@ class TempDir {
  private:
   fs::path path_;
 };
+
+// The names of the entries in `dir` (not recursive).
+inline std::set<std::string> listing(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
+  return names;
+}
 
 // Mesh from $VOXR_MESH_DIR (scripts/fetch-meshes.sh), or an empty path when absent.
 std::string mesh_path(const std::string& name);

@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_support.h"
 #include "core/generators.h"
 #include "grid/sparse_voxel_grid.h"
 #include "io/grid_encoding.h"
@@ -38,34 +39,10 @@
 namespace voxr {
 namespace {
 
+using test::listing;
+using test::slurp;
+
 namespace fs = std::filesystem;
-
-struct TempFolder {
-  fs::path path;
-  explicit TempFolder(const std::string& name)
-      : path(fs::path(testing::TempDir()) / fmt::format("voxr_sparse_writer_{}_{}", ::getpid(), name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempFolder() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  EXPECT_TRUE(in) << p;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::set<std::string> listing(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
-  return names;
-}
 
 // A torus voxelized with every surface channel on a grid whose dims are not multiples of 8 (bricks stick
 // out of the grid), optionally in a rotated frame.
@@ -109,31 +86,31 @@ void expect_same_files(const VoxelGrid& dense, const fs::path& dir, const std::s
 }
 
 TEST(SparseWriters, EveryFormatFromSparseIsByteIdentical) {
-  const TempFolder folder("same");
+  const test::TempDir folder;
   const VoxelGrid g = torus_grid(45, false);
   ASSERT_GT(g.voxels_set, 1000u);
   ASSERT_NE(g.spec.dims.x % 8, 0u);
-  for (const char* name : {"t.nrrd", "t.vti", "t.npz", "t.vox"}) expect_same_files(g, folder.path, name);
+  for (const char* name : {"t.nrrd", "t.vti", "t.npz", "t.vox"}) expect_same_files(g, folder.path(), name);
   // binvox: cubic grids.
   TriangleSoup soup = make_torus();
   GridRequest r;
   r.dims = glm::uvec3(37);
   Voxelizer voxelizer(test::runtime());
   const VoxelGrid cube = voxelizer.run(soup, fit_grid(soup.bounds(), r, soup.anchor), VoxelizeOptions{});
-  expect_same_files(cube, folder.path, "c.binvox");
+  expect_same_files(cube, folder.path(), "c.binvox");
 }
 
 TEST(SparseWriters, RotatedGridAndNormalsFromSums) {
-  const TempFolder folder("rotated");
+  const test::TempDir folder;
   VoxelGrid g = torus_grid(30, true);
-  for (const char* name : {"r.nrrd", "r.vti", "r.npz"}) expect_same_files(g, folder.path, name);
+  for (const char* name : {"r.nrrd", "r.vti", "r.npz"}) expect_same_files(g, folder.path(), name);
   g.normal.clear();  // the writers normalize normal_sum themselves
-  for (const char* name : {"s.nrrd", "s.vti", "s.npz"}) expect_same_files(g, folder.path, name);
+  for (const char* name : {"s.nrrd", "s.vti", "s.npz"}) expect_same_files(g, folder.path(), name);
 }
 
 TEST(SparseWriters, SlicesLargerThanAChunkStreamByRows) {
   // 1100 x 1000 voxels per slice > kDenseChunk: a slice is written in row ranges.
-  const TempFolder folder("rows");
+  const test::TempDir folder;
   GridSpec spec;
   spec.dims = {1100, 1000, 10};  // slices 5 and 9 lie in the upper half of a brick layer
   VoxelGrid g;
@@ -149,19 +126,19 @@ TEST(SparseWriters, SlicesLargerThanAChunkStreamByRows) {
   g.channels = ChannelSet::parse("occ,count");
   g.for_each_set([&](uint64_t linear, uint64_t) { g.count.push_back(uint32_t(linear % 1000 + 1)); });
   ASSERT_GT(uint64_t(spec.dims.x) * spec.dims.y, kDenseChunk);
-  expect_same_files(g, folder.path, "w.nrrd");
+  expect_same_files(g, folder.path(), "w.nrrd");
 }
 
 #ifdef VOXR_TEST_OPENVDB
 TEST(SparseWriters, VdbReadsBackWithOpenVDB) {
   if (!openvdb_module_available()) GTEST_SKIP() << "the OpenVDB plugin is not built";
-  const TempFolder folder("vdb");
+  const test::TempDir folder;
   for (const bool rotated : {false, true}) {
     const VoxelGrid dense = torus_grid(40, rotated);
     const SparseVoxelGrid g = to_sparse(dense);
-    const fs::path out = folder.path / (rotated ? "r.vdb" : "t.vdb");
+    const fs::path out = folder.path() / (rotated ? "r.vdb" : "t.vdb");
     EXPECT_EQ(write_volume(g, out), std::vector<fs::path>{out});
-    EXPECT_EQ(listing(folder.path).count(out.filename().string()), 1u);
+    EXPECT_EQ(listing(folder.path()).count(out.filename().string()), 1u);
 
     openvdb::initialize();
     openvdb::io::File file(out.string());
@@ -226,10 +203,10 @@ TEST(SparseWriters, VdbReadsBackWithOpenVDB) {
 TEST(SparseWriters, NpzReadsBackWithNumpy) {
   if (std::system("/usr/bin/python3 -c 'import numpy' >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "python3 with numpy is not installed";
-  const TempFolder folder("npz");
+  const test::TempDir folder;
   const VoxelGrid dense = torus_grid(20, true);
   const SparseVoxelGrid g = to_sparse(dense);
-  const fs::path out = folder.path / "t.npz", json = folder.path / "t.json";
+  const fs::path out = folder.path() / "t.npz", json = folder.path() / "t.json";
   write_volume(g, out);
   // NumPy reads the archive; the arrays go back as JSON (doubles print exactly).
   const std::string script = fmt::format(
@@ -238,8 +215,8 @@ TEST(SparseWriters, NpzReadsBackWithNumpy) {
       "json.dump({{k: {{'dtype': str(z[k].dtype), 'shape': list(z[k].shape), 'values': z[k].tolist()}} "
       "for k in z.files}}, open('{}', 'w'))\n",
       out.string(), json.string());
-  std::ofstream(folder.path / "read.py") << script;
-  ASSERT_EQ(std::system(fmt::format("/usr/bin/python3 {}", (folder.path / "read.py").string()).c_str()), 0);
+  std::ofstream(folder.path() / "read.py") << script;
+  ASSERT_EQ(std::system(fmt::format("/usr/bin/python3 {}", (folder.path() / "read.py").string()).c_str()), 0);
   const nlohmann::json z = nlohmann::json::parse(slurp(json));
   const uint64_t n = g.voxels_set;
   EXPECT_EQ(z["ijk"]["dtype"], "int32");
@@ -299,22 +276,22 @@ void expect_error_naming(const SparseVoxelGrid& g, const fs::path& out, const st
 }
 
 TEST(SparseWriters, MissingPluginLeavesNothing) {
-  const TempFolder folder("noplugin");
+  const test::TempDir folder;
   const SparseVoxelGrid g = to_sparse(torus_grid(16, false));
-  const ScopedEnv env("VOXR_OPENVDB_PLUGIN", (folder.path / "libnothing.so").c_str());
-  expect_error_naming(g, folder.path / "t.vdb", "OpenVDB plugin");
+  const ScopedEnv env("VOXR_OPENVDB_PLUGIN", (folder.path() / "libnothing.so").c_str());
+  expect_error_naming(g, folder.path() / "t.vdb", "OpenVDB plugin");
   try {
-    check_volume_output(folder.path / "t.vdb", g.spec.dims);
+    check_volume_output(folder.path() / "t.vdb", g.spec.dims);
     ADD_FAILURE() << "check_volume_output accepted .vdb without the plugin";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("t.vdb"), std::string::npos) << e.what();
   }
-  EXPECT_TRUE(listing(folder.path).empty());
+  EXPECT_TRUE(listing(folder.path()).empty());
 }
 
 TEST(SparseWriters, FullDiskLeavesNothing) {
   // A file size limit makes writes fail part way through, as a full disk would.
-  const TempFolder folder("full");
+  const test::TempDir folder;
   const SparseVoxelGrid g = to_sparse(torus_grid(40, false));
   rlimit old{};
   ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
@@ -322,15 +299,15 @@ TEST(SparseWriters, FullDiskLeavesNothing) {
   rlimit small = old;
   small.rlim_cur = 4096;
   ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
-  expect_error_naming(g, folder.path / "t.npz", "t.npz");
-  expect_error_naming(g, folder.path / "t.vti", "write failed");
+  expect_error_naming(g, folder.path() / "t.npz", "t.npz");
+  expect_error_naming(g, folder.path() / "t.vti", "write failed");
   if (openvdb_module_available()) {
     const ScopedEnv env("VOXR_VDB_COMPRESSION", "none");
-    expect_error_naming(g, folder.path / "t.vdb", "OpenVDB could not write");
+    expect_error_naming(g, folder.path() / "t.vdb", "OpenVDB could not write");
   }
   ::setrlimit(RLIMIT_FSIZE, &old);
   ::signal(SIGXFSZ, old_handler);
-  EXPECT_TRUE(listing(folder.path).empty());
+  EXPECT_TRUE(listing(folder.path()).empty());
 }
 
 }  // namespace

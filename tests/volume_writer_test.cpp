@@ -23,10 +23,15 @@
 #include "io/vox_writer.h"
 #include "io/vti_writer.h"
 #include "util/error.h"
+#include "cli_support.h"
+#include "test_support.h"
 #include "voxr_layout.h"
 
 namespace voxr {
 namespace {
+
+using test::listing;
+using test::slurp;
 
 namespace fs = std::filesystem;
 
@@ -75,35 +80,6 @@ GridSpec spec_of(glm::uvec3 dims, float h = 0.5f, glm::vec3 origin = {1.0f, -2.0
 VoxelGrid small_grid() {
   return make_grid(spec_of({5, 4, 3}),
                    {{0, 0, 0}, {1, 0, 0}, {4, 0, 0}, {0, 3, 0}, {2, 1, 1}, {0, 0, 2}, {4, 3, 2}, {3, 2, 2}});
-}
-
-// A fresh folder under the test temp dir, unique per process, removed with everything in it at the end.
-struct TempFolder {
-  fs::path path;
-  explicit TempFolder(const std::string& name)
-      : path(fs::path(testing::TempDir()) / fmt::format("voxr_volume_writer_{}_{}", ::getpid(), name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempFolder() {
-    std::error_code ec;
-    fs::permissions(path, fs::perms::owner_all, ec);
-    fs::remove_all(path, ec);
-  }
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  EXPECT_TRUE(in) << p;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::set<std::string> listing(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
-  return names;
 }
 
 template <typename T>
@@ -173,8 +149,8 @@ std::vector<float> parse_floats(std::string text) {
 }
 
 TEST(VolumeWriter, NrrdOccupancyAndChannelSiblings) {
-  const TempFolder folder("nrrd");
-  const fs::path& dir = folder.path;
+  const test::TempDir folder;
+  const fs::path& dir = folder.path();
   const VoxelGrid g = small_grid();
   const fs::path out = dir / "scene.nrrd";
   const auto written = write_volume(g, out);
@@ -225,8 +201,8 @@ TEST(VolumeWriter, NrrdOccupancyAndChannelSiblings) {
 }
 
 TEST(VolumeWriter, NrrdOccupancyOnlyAndRotatedAxes) {
-  const TempFolder folder("nrrd_rot");
-  const fs::path& dir = folder.path;
+  const test::TempDir folder;
+  const fs::path& dir = folder.path();
   GridSpec spec = spec_of({5, 4, 3}, 2.0f, {0, 0, 0});
   spec.axes = glm::mat3(glm::vec3(0, 1, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 0, 1));  // 90 deg about z
   const VoxelGrid g = make_grid(spec, {{1, 2, 0}, {4, 3, 2}}, /*attributes=*/false);
@@ -240,8 +216,8 @@ TEST(VolumeWriter, NrrdOccupancyOnlyAndRotatedAxes) {
 
 TEST(VolumeWriter, NrrdStreamsAcrossChunks) {
   // More than one 2^20-voxel chunk, voxels on both sides of the boundary, and channels via normal_sum only.
-  const TempFolder folder("nrrd_big");
-  const fs::path& dir = folder.path;
+  const test::TempDir folder;
+  const fs::path& dir = folder.path();
   const GridSpec spec = spec_of({128, 128, 80});
   std::vector<glm::uvec3> voxels;
   for (uint64_t l : {uint64_t(0), uint64_t(31), uint64_t(32), uint64_t(1048575), uint64_t(1048576),
@@ -306,8 +282,8 @@ void expect_binvox_matches(const VoxelGrid& g, const Binvox& b) {
 }
 
 TEST(VolumeWriter, BinvoxOrderAndHeader) {
-  const TempFolder folder("binvox");
-  const fs::path& dir = folder.path;
+  const test::TempDir folder;
+  const fs::path& dir = folder.path();
   // Asymmetric: voxels differ under any permutation of the axes.
   const VoxelGrid g = make_grid(spec_of({4, 4, 4}), {{1, 0, 0}, {0, 2, 0}, {0, 0, 3}, {3, 1, 2}, {2, 3, 3}});
   ASSERT_EQ(write_volume(g, dir / "g.binvox"), (std::vector<fs::path>{dir / "g.binvox"}));
@@ -325,8 +301,8 @@ TEST(VolumeWriter, BinvoxOrderAndHeader) {
 }
 
 TEST(VolumeWriter, BinvoxLongRunsAndSeveralXBlocks) {
-  const TempFolder folder("binvox_big");
-  const fs::path& dir = folder.path;
+  const test::TempDir folder;
+  const fs::path& dir = folder.path();
   const uint32_t d = 70;  // two 64-wide x blocks, runs longer than 255
   std::vector<glm::uvec3> voxels;
   for (uint32_t z = 0; z < d; ++z)
@@ -341,8 +317,8 @@ TEST(VolumeWriter, BinvoxLongRunsAndSeveralXBlocks) {
 // ---- vox -------------------------------------------------------------------------------------------------
 
 TEST(VolumeWriter, VoxChunksAndAxisMapping) {
-  const TempFolder folder("vox");
-  const fs::path& dir = folder.path;
+  const test::TempDir folder;
+  const fs::path& dir = folder.path();
   const VoxelGrid g = small_grid();
   ASSERT_EQ(write_volume(g, dir / "g.vox"), (std::vector<fs::path>{dir / "g.vox"}));
   const std::string s = slurp(dir / "g.vox");
@@ -392,8 +368,8 @@ TEST(VolumeWriter, VoxChunksAndAxisMapping) {
 }
 
 TEST(VolumeWriter, VoxWithoutMaterialUsesColourOne) {
-  const TempFolder folder("vox_nomat");
-  const fs::path& dir = folder.path;
+  const test::TempDir folder;
+  const fs::path& dir = folder.path();
   const VoxelGrid g = make_grid(spec_of({256, 2, 1}), {{255, 1, 0}, {0, 0, 0}}, false);
   write_volume(g, dir / "g.vox");
   const std::string s = slurp(dir / "g.vox");
@@ -418,8 +394,8 @@ std::string attribute(const std::string& xml, const std::string& element_start, 
 }
 
 TEST(VolumeWriter, VtiHeaderAndAppendedData) {
-  const TempFolder folder("vti");
-  const fs::path& dir = folder.path;
+  const test::TempDir folder;
+  const fs::path& dir = folder.path();
   GridSpec spec = spec_of({5, 4, 3});
   spec.axes = glm::mat3(glm::vec3(0, 1, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 0, 1));
   VoxelGrid g = small_grid();
@@ -470,8 +446,8 @@ TEST(VolumeWriter, VtiHeaderAndAppendedData) {
 
 TEST(VolumeWriter, InsideChannelRoundTrip) {
   // The dense interior bits next to occupancy and the sparse channels: NRRD sibling and VTI array, uint8 0/1.
-  const TempFolder folder("inside");
-  const fs::path& dir = folder.path;
+  const test::TempDir folder;
+  const fs::path& dir = folder.path();
   VoxelGrid g = small_grid();
   g.channels.add(Channel::kInside);
   g.inside.assign(g.occ.size(), 0u);
@@ -518,8 +494,8 @@ void expect_error_naming(const VoxelGrid& g, const fs::path& out, const std::str
 }
 
 TEST(VolumeWriter, ErrorsNameTheOutput) {
-  const TempFolder folder("errors");
-  const fs::path& dir = folder.path;
+  const test::TempDir folder;
+  const fs::path& dir = folder.path();
   expect_error_naming(small_grid(), dir / "g.binvox", "5x4x3");
   expect_error_naming(make_grid(spec_of({300, 1, 1}), {{299, 0, 0}}), dir / "wide.vox", "300 along x");
   expect_error_naming(make_grid(spec_of({1, 2, 257}), {{0, 0, 0}}), dir / "tall.vox", "257 along z");
@@ -534,8 +510,8 @@ TEST(VolumeWriter, ErrorsNameTheOutput) {
 
 TEST(VolumeWriter, FullDiskNamesTheFile) {
   // A file size limit makes write() fail with EFBIG part way through, as a full disk would.
-  const TempFolder folder("full");
-  const fs::path& dir = folder.path;
+  const test::TempDir folder;
+  const fs::path& dir = folder.path();
   const VoxelGrid g = make_grid(spec_of({128, 128, 80}), {{1, 2, 3}});
   rlimit old{};
   ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
@@ -552,8 +528,8 @@ TEST(VolumeWriter, FullDiskNamesTheFile) {
 
 TEST(VolumeWriter, WriteFailureNamesTheFile) {
   if (::geteuid() == 0) GTEST_SKIP() << "root ignores folder permissions";
-  const TempFolder folder("readonly");
-  const fs::path& dir = folder.path;
+  const test::TempDir folder;
+  const fs::path& dir = folder.path();
   fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
   expect_error_naming(small_grid(), dir / "g.nrrd", "cannot create");
   fs::permissions(dir, fs::perms::owner_all);

@@ -608,7 +608,7 @@ TEST_F(ViewerTest, VoxelizeViewNeedsAViewableOutput) {
   EXPECT_NE(r.output.find("--view needs -o OUT"), std::string::npos) << r.output;
   r = run(voxr + " -o " + quoted(dir_ / "box.binvox"));
   EXPECT_NE(r.code, 0);
-  EXPECT_NE(r.output.find("voxr-view reads .vti and .nrrd"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("voxr-view reads .vti, .nrrd and .vdb"), std::string::npos) << r.output;
 }
 
 TEST_F(ViewerTest, NoDisplayFailsWithAHint) {

@@ -62,11 +62,8 @@ TriangleSoup to_soup(PolygonMesh& mesh, TriangulationReport& report) {
   triangulate(mesh, soup.triangles, report, &colors.triangle_look);
   colors.vertex_rgba.assign(mesh.vertex_rgba.begin(), mesh.vertex_rgba.end());
   colors.vertex_uv.assign(mesh.vertex_uv.begin(), mesh.vertex_uv.end());
-  colors.looks.reserve(mesh.looks.size());
-  for (const MeshLook& l : mesh.looks) colors.looks.push_back(SurfaceLook{l.factor_rgba, l.texture});
-  colors.textures.reserve(mesh.textures.size());
-  for (MeshTexture& t : mesh.textures)
-    colors.textures.push_back(SoupTexture{t.width, t.height, std::move(t.texels), std::move(t.source)});
+  colors.looks = std::move(mesh.looks);
+  colors.textures = std::move(mesh.textures);
   return soup;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "util/host_array.h"
+#include "util/surface_look.h"
 
 namespace voxr {
 
@@ -33,21 +34,6 @@ struct Bounds {
   glm::vec3 size() const { return empty() ? glm::vec3(0) : hi - lo; }
 };
 
-// A base-colour texture: RGBA8 texels, row 0 at the top of the image (v = 1), texel (x, y) at
-// texels[y * width + x] with R in the low byte, as stored in the file (sRGB-encoded for the usual formats).
-struct SoupTexture {
-  uint32_t width = 0, height = 0;
-  std::vector<uint32_t> texels;
-  std::string source;  // the file, for messages
-};
-
-// How a triangle's surface is coloured (glTF's base colour): factor x texture(uv) x vertex colour, each
-// RGBA in [0, 1] (8-bit values / 255), the texture sampled with wrap-around (GL_REPEAT) and nearest texel.
-struct SurfaceLook {
-  uint32_t factor_rgba = 0xffffffffu;  // RGBA8, R in the low byte
-  int32_t texture = -1;                // index into SoupColors::textures, -1 for none
-};
-
 // The surface colour a mesh carries, parallel to the soup's arrays; every array may be empty: no vertex
 // colours means white, no UVs means the texture is not sampled (the factor alone), no triangle_look means
 // look 0 for every triangle, no looks means white. Colour is an input of the `color` channel only; the
@@ -66,7 +52,7 @@ struct TriangleSoup {
   // Page-aligned, so a CPU device reads them in place (host_array.h).
   HostArray<glm::vec4> positions;   // relative to anchor; w = 1
   HostArray<glm::uvec4> triangles;  // xyz: indices into positions, w: material id
-  SoupColors colors;                 // surface colour, when the mesh has any (empty otherwise)
+  SoupColors colors;                // surface colour, when the mesh has any (empty otherwise)
 
   size_t triangle_count() const { return triangles.size(); }
   size_t vertex_count() const { return positions.size(); }

@@ -122,7 +122,7 @@ void append_instance(const std::string& name, const aiMesh& mesh, const glm::dma
 
 // The base-colour texture `path` of a material: embedded ("*0", or a name the file embeds) or a file
 // relative to the mesh. Raw embedded texels (aiTexel, BGRA) are taken as they are.
-MeshTexture material_texture(const std::string& name, const aiScene& scene, const std::string& path) {
+SoupTexture material_texture(const std::string& name, const aiScene& scene, const std::string& path) {
   if (const aiTexture* t = scene.GetEmbeddedTexture(path.c_str())) {
     const std::string source = fmt::format("{} (embedded texture '{}')", name, text::printable(path));
     if (t->pcData == nullptr) fail("{}: no data", source);
@@ -130,7 +130,7 @@ MeshTexture material_texture(const std::string& name, const aiScene& scene, cons
       return decode_texture(source, std::string_view(reinterpret_cast<const char*>(t->pcData), t->mWidth));
     if (uint64_t(t->mWidth) * t->mHeight > kMaxTextureTexels)
       fail("{}: {}x{} texels are more than voxr reads", source, t->mWidth, t->mHeight);
-    MeshTexture out;
+    SoupTexture out;
     out.width = t->mWidth;
     out.height = t->mHeight;
     out.source = source;
@@ -157,7 +157,7 @@ void read_looks(const std::string& name, const aiScene& scene, PolygonMesh& out)
   std::vector<std::string> paths;
   for (unsigned m = 0; m < scene.mNumMaterials; ++m) {
     const aiMaterial& material = *scene.mMaterials[m];
-    MeshLook look;
+    SurfaceLook look;
     aiColor4D c(1.0f, 1.0f, 1.0f, 1.0f);
     if (material.Get(AI_MATKEY_BASE_COLOR, c) != AI_SUCCESS &&
         material.Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS) {
@@ -282,7 +282,7 @@ PolygonMesh read_with_assimp(const fs::path& file) {
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) colours |= scene->mMeshes[m]->HasVertexColors(0);
   const bool plain = !colours && !textured &&
                      std::all_of(out.looks.begin(), out.looks.end(),
-                                 [](const MeshLook& l) { return l.factor_rgba == kWhiteRgba; });
+                                 [](const SurfaceLook& l) { return l.factor_rgba == kWhiteRgba; });
   if (plain) out.looks.clear();
   CornerWelder welder(out, vertices, colours || textured);
   Skipped skipped;
@@ -308,7 +308,7 @@ PolygonMesh read_with_assimp(const fs::path& file) {
   // faces may not use); one look for every face needs no per-face list.
   if (!out.looks.empty()) {
     std::vector<int32_t> look_of(out.looks.size(), -1);
-    std::vector<MeshLook> used;
+    std::vector<SurfaceLook> used;
     out.face_looks.resize(out.materials.size());
     for (size_t f = 0; f < out.materials.size(); ++f) {
       int32_t& look = look_of[out.materials[f]];

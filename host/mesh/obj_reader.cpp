@@ -74,14 +74,14 @@ std::string_view rest_of(const std::vector<std::string_view>& tokens, size_t fir
 }
 
 struct ObjMaterial {
-  MeshLook look;
+  SurfaceLook look;
   bool coloured = false;  // Kd, d, Tr or map_Kd given
 };
 
 // Reads the material library `file` into `materials` (later definitions of a name replace earlier ones);
 // textures are read relative to the library's folder, each file once (`texture_ids`).
 void read_mtl(const fs::path& file, std::map<std::string, ObjMaterial, std::less<>>& materials,
-              std::vector<MeshTexture>& textures, std::map<fs::path, int32_t>& texture_ids) {
+              std::vector<SoupTexture>& textures, std::map<fs::path, int32_t>& texture_ids) {
   const std::string name = file.string();
   const FileBytes bytes(file);
   text::Lines lines(bytes.view());
@@ -182,7 +182,7 @@ struct ObjColours {
   std::vector<int32_t> corner_uv;
   bool any_corner_uv = false;  // corner_uv is filled from the first corner with a vt on
   std::map<std::string, ObjMaterial, std::less<>> materials;
-  std::vector<MeshTexture> textures;
+  std::vector<SoupTexture> textures;
   std::map<fs::path, int32_t> texture_ids;
 
   [[gnu::noinline]] void vertex_colour(PolygonMesh& mesh, size_t number,
@@ -254,7 +254,7 @@ struct ObjColours {
   // Looks: one per material id, from the library's material of that name (white when it has none); none at
   // all when no material has a colour.
   [[gnu::noinline]] void finish(PolygonMesh& mesh, const std::map<std::string, uint32_t, std::less<>>& ids) {
-    std::vector<MeshLook> looks(ids.size());
+    std::vector<SurfaceLook> looks(ids.size());
     bool looks_coloured = false, textured = false;
     for (const auto& [material, id] : ids) {
       const auto m = materials.find(material);

@@ -42,7 +42,7 @@ struct OffBody {
 
   uint32_t look(uint32_t rgba) {
     const auto [it, added] = look_of_colour.try_emplace(rgba, uint32_t(mesh.looks.size()));
-    if (added) mesh.looks.push_back(MeshLook{rgba, -1});
+    if (added) mesh.looks.push_back(SurfaceLook{rgba, -1});
     return it->second;
   }
   // Records the colour of the face just added: `rgba`, or none (white once any face has a colour).

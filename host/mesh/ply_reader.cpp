@@ -313,7 +313,7 @@ void split_corner_uvs(const std::string& name, PolygonMesh& mesh, const std::vec
 [[gnu::noinline]] void add_face_look(PolygonMesh& mesh,
                                      std::unordered_map<uint32_t, uint32_t>& look_of_colour, uint32_t rgba) {
   const auto [look, added] = look_of_colour.try_emplace(rgba, uint32_t(mesh.looks.size()));
-  if (added) mesh.looks.push_back(MeshLook{rgba, -1});
+  if (added) mesh.looks.push_back(SurfaceLook{rgba, -1});
   mesh.face_looks.push_back(look->second);
 }
 
@@ -477,8 +477,8 @@ PolygonMesh read_ply(const std::string& name, std::string_view bytes) {
   if (textured) {
     mesh.textures.push_back(
         read_texture(std::filesystem::path(name).parent_path() / h.texture_file, name, h.texture_line));
-    if (mesh.looks.empty()) mesh.looks.push_back(MeshLook());
-    for (MeshLook& look : mesh.looks) look.texture = 0;
+    if (mesh.looks.empty()) mesh.looks.push_back(SurfaceLook());
+    for (SurfaceLook& look : mesh.looks) look.texture = 0;
     if (!corner_uv.empty()) split_corner_uvs(name, mesh, corner_uv);
   }
   return mesh;

@@ -9,22 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "util/surface_look.h"
+
 namespace voxr {
-
-// A base-colour texture as read: RGBA8 texels (R in the low byte), row 0 at the top of the image, texel (x,
-// y) at texels[y * width + x]. mesh_loader moves it into the soup's SoupTexture (core/triangle_soup.h; mesh/
-// does not include core/, docs/architecture.md).
-struct MeshTexture {
-  uint32_t width = 0, height = 0;
-  std::vector<uint32_t> texels;
-  std::string source;  // the file, for messages
-};
-
-// How a face is coloured, as the soup's SurfaceLook: factor x texture(uv) x vertex colour.
-struct MeshLook {
-  uint32_t factor_rgba = 0xffffffffu;  // RGBA8, R in the low byte
-  int32_t texture = -1;                // index into PolygonMesh::textures, -1 for none
-};
 
 struct PolygonMesh {
   std::vector<glm::dvec3> positions;  // world units, as in the file
@@ -35,8 +22,8 @@ struct PolygonMesh {
   std::vector<uint32_t> vertex_rgba;  // per position, RGBA8 (R in the low byte)
   std::vector<glm::vec2> vertex_uv;   // per position, texture coordinates (u right, v up)
   std::vector<uint32_t> face_looks;   // per face, index into looks
-  std::vector<MeshLook> looks;
-  std::vector<MeshTexture> textures;
+  std::vector<SurfaceLook> looks;
+  std::vector<SoupTexture> textures;
 
   size_t face_count() const { return face_sizes.size(); }
   void add_face(const uint32_t* corners, uint32_t count) {

@@ -19,7 +19,7 @@ struct StbiFree {
 
 }  // namespace
 
-MeshTexture decode_texture(const std::string& name, std::string_view bytes) {
+SoupTexture decode_texture(const std::string& name, std::string_view bytes) {
   if (bytes.empty()) fail("{}: the texture file is empty", name);
   if (bytes.size() > size_t(1) << 31) fail("{}: the texture file is larger than 2 GiB", name);
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
@@ -42,7 +42,7 @@ MeshTexture decode_texture(const std::string& name, std::string_view bytes) {
   if (!pixels) fail("{}: cannot decode the texture: {}", name, stbi_failure_reason());
   if (w != width || h != height)
     fail("{}: the texture decodes to {}x{} texels but its header says {}x{}", name, w, h, width, height);
-  MeshTexture t;
+  SoupTexture t;
   t.width = uint32_t(w);
   t.height = uint32_t(h);
   t.texels.resize(texels);
@@ -51,7 +51,7 @@ MeshTexture decode_texture(const std::string& name, std::string_view bytes) {
   return t;
 }
 
-MeshTexture read_texture(const std::filesystem::path& file, const std::string& referrer, size_t line) {
+SoupTexture read_texture(const std::filesystem::path& file, const std::string& referrer, size_t line) {
   const std::string where = line > 0 ? fmt::format("{}: line {}", referrer, line) : referrer;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))

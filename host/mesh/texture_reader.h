@@ -1,4 +1,4 @@
-// Base-colour textures for the mesh readers (polygon_mesh.h MeshTexture): PNG, JPEG, TGA, BMP (and the
+// Base-colour textures for the mesh readers (util/surface_look.h SoupTexture): PNG, JPEG, TGA, BMP (and the
 // other formats stb_image knows: GIF's first frame, PSD, PNM) decoded by stb_image (Debian libstb), to 8-bit
 // RGBA with row 0 at the top. Grey and RGB are expanded (alpha 255), 16-bit channels reduced to 8 bits.
 // stb_image rather than OpenImageIO: OIIO costs every fresh `voxr` process ~0.2 s of dynamic loading.
@@ -19,11 +19,11 @@ inline constexpr uint64_t kMaxTextureTexels = uint64_t(1) << 26;
 // The header is read first (stbi_info): an image of more than kMaxTextureTexels texels, or of more texels
 // than its bytes can encode (16384 per byte), is refused before any pixel is allocated.
 // Throws voxr::Error, one line starting with `name`: empty bytes, an unknown or corrupt image, too large.
-MeshTexture decode_texture(const std::string& name, std::string_view bytes);
+SoupTexture decode_texture(const std::string& name, std::string_view bytes);
 
 // decode_texture of the file `file`. Throws voxr::Error naming `referrer` (the mesh or material file that
 // names the texture, with its line when `line` > 0) and the texture when the file is missing or unreadable.
-MeshTexture read_texture(const std::filesystem::path& file, const std::string& referrer, size_t line = 0);
+SoupTexture read_texture(const std::filesystem::path& file, const std::string& referrer, size_t line = 0);
 
 }  // namespace voxr
 

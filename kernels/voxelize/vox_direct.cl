@@ -24,7 +24,7 @@
 /* Limits of the direct path: cells per axis (the 32-bit bounds above assume at most 16) and in all. A
  * triangle of up to 16 x 16 x 4 cells is cheaper here than as 10-40 copies of the slice path (each copy sets
  * up the 13 axes in 64-bit and clips in float): at 4096^3, where a 1.1 M-triangle mesh's triangles span about
- * 10 cells, this took the kernels from 8.2 s to 2.8 s on PoCL (bench/results/issue21-sparse-pocl-2core.md). */
+ * 10 cells, this took a fresh run from 4.5 s to 2.3 s on PoCL (bench/results/issue21-sparse-pocl-2core.md). */
 #ifndef VOX_DIRECT_SPAN
 #define VOX_DIRECT_SPAN 16
 #endif
