@@ -175,7 +175,8 @@ int run_bench_voxelize(const BenchVoxelizeArgs& args) {
           DeviceMesh device_mesh = upload_mesh(
               cl, mesh.soup, grid, options.solid ? SplitCull::kColumns : SplitCull::kGrid, &bounds);
           if (options.channels.has(Channel::kColor))
-            device_mesh.attach_colors(std::make_shared<const DeviceColors>(cl, mesh.soup, name));
+            device_mesh.attach_colors(
+                std::make_shared<const DeviceColors>(cl, device_mesh.soup_for_colors(mesh.soup), name));
           DeviceVoxelGrid frame_grid;
           for (int r = 0; r < args.warmup + args.repeat; ++r) {
             voxelizer.run(device_mesh, grid, options, frame_grid, &frame);

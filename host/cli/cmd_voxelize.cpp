@@ -51,8 +51,8 @@ struct VoxelizeArgs {
   std::string device;
   std::string report;
   std::string layout = "auto";
-  std::string memory_budget;  // empty: from the device
-  uint32_t rows_per_copy = 16;  // VoxelizeOptions::rows_per_copy
+  std::string memory_budget;           // empty: from the device
+  uint32_t rows_per_copy = 16;         // VoxelizeOptions::rows_per_copy
   std::optional<double> error_target;  // the surface error to meet (voxel_surface_error.h, chamfer)
   bool profile = false;
   bool quiet = false;
@@ -255,6 +255,8 @@ int run_voxelize(const VoxelizeArgs& args) {
   if (args.layout != "auto" && args.layout != "dense" && args.layout != "sparse")
     fail("--layout '{}': expected auto, dense or sparse", args.layout);
   const uint64_t memory_budget = args.memory_budget.empty() ? 0 : parse_memory_budget(args.memory_budget);
+  if (args.layout == "sparse" && args.error_target)
+    fail("--error-target searches dense grids: leave out --layout sparse");
   const std::filesystem::path viewer = args.view ? find_viewer(args.output) : std::filesystem::path();
   VoxelizeOptions options = voxelize_options(args);
   const bool tty = isatty(fileno(stderr)) && !args.quiet;
@@ -349,8 +351,6 @@ int run_voxelize(const VoxelizeArgs& args) {
 
   VoxelizeStats stats;
   const bool sparse_layout = choose_sparse(args.layout, grid, options, cl);
-  if (sparse_layout && args.error_target)
-    fail("--error-target searches dense grids: leave out --layout sparse");
   std::optional<SparseStats> sparse_stats;
   SparseVoxelGrid sparse_result;
   VoxelGrid result;
@@ -362,11 +362,17 @@ int run_voxelize(const VoxelizeArgs& args) {
     result = voxelizer.run(soup, grid, options, &stats, &bounds);
   }
   const ChannelSet result_channels = sparse_layout ? sparse_result.channels : result.channels;
-  const uint64_t host_bytes =
-      sparse_layout
-          ? sparse_result.memory_bytes()
-          : (result.occ.size() + result.inside.size() + result.count.size() + result.material.size()) * 4 +
-                result.normal_sum.size() * 24;
+  const uint64_t host_bytes = sparse_layout
+                                  ? sparse_result.memory_bytes()
+                                  : (result.occ.size() + result.inside.size() + result.count.size() +
+                                     result.material.size() + result.color.size()) *
+                                            4 +
+                                        (result.normal_sum.size() + result.normal.size()) * 12;
+  if (!sparse_layout && memory_budget)
+    fmt::print(
+        stderr,
+        "voxr: warning: --memory-budget applies to the sparse layout; the {} x {} x {} grid ran dense\n",
+        grid.dims.x, grid.dims.y, grid.dims.z);
   // The saving is measured: the same job on the fixed grid it replaces.
   VoxelizeStats fixed;
   GridSpec fixed_grid;
@@ -497,7 +503,8 @@ Command add_voxelize(CLI::App& app) {
   sub->add_option("input", args->input,
                   "mesh (" + mesh_extensions() + ") or scene file; omitted: the built-in default scene");
   sub->add_option("-o,--output", args->output,
-                  "output volume: .vdb (OpenVDB, sparse), .npz (sparse voxel list), .nrrd, .vti, .binvox (cubic: --res N gives N^3), .vox (<=256)");
+                  "output volume: .vdb (OpenVDB, sparse), .npz (sparse voxel list), .nrrd, .vti, .binvox "
+                  "(cubic: --res N gives N^3), .vox (<=256)");
   add_grid_option(*sub, "--res", GridKind::kVoxel, args->res)->default_str("256, or the scene's grid");
   sub->add_option("--dims", args->dims, "exact grid dimensions X,Y,Z");
   sub->add_option(

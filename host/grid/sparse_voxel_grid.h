@@ -10,7 +10,7 @@
 // is the number of set voxels before brick i, so voxel b of brick i has rank brick_rank[i] + popcount of the
 // brick's bits below b.
 //
-// Produced by the tiled voxelizer (host/voxelize/tiled_voxelizer.h) or converted from a dense VoxelGrid
+// Produced by the sparse voxelizer (host/voxelize/sparse_voxelizer.h) or converted from a dense VoxelGrid
 // (to_sparse); to_dense goes back (tests, small grids).
 #pragma once
 

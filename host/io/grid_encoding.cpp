@@ -27,6 +27,7 @@ void check_grid_layout(const SparseVoxelGrid& grid) {
   VOXR_CHECK_EQ(grid.brick_rank.size(), grid.bricks() + 1);
   VOXR_CHECK_EQ(grid.brick_rank.back(), grid.voxels_set);
   VOXR_CHECK(!grid.channels.has(Channel::kInside));
+  if (grid.channels.has(Channel::kColor)) VOXR_CHECK_EQ(uint64_t(grid.color.size()), grid.voxels_set);
   const uint64_t brick_count = uint64_t(grid.brick_dims.x) * grid.brick_dims.y * grid.brick_dims.z;
   for (size_t b = 0; b < grid.bricks(); ++b) {
     VOXR_CHECK_LT(grid.brick_index[b], brick_count);

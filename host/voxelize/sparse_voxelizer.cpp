@@ -31,6 +31,7 @@ uint64_t slot_bytes(const VoxelizeOptions& options) {
   if (options.channels.has(Channel::kCount)) per_voxel += 4;
   if (options.channels.has(Channel::kNormal)) per_voxel += 24;
   if (options.channels.has(Channel::kMaterial)) per_voxel += 4;
+  if (options.channels.has(Channel::kColor)) per_voxel += 20;  // the colour sums and the RGBA8 channel
   return bytes + 128 + 128 * per_voxel;
 }
 
@@ -119,8 +120,9 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
   slab_layers = std::min<uint64_t>(slab_layers, cl_.device().max_allocation / (layer / 4 + 1));
   slab_layers = std::clamp<uint64_t>(slab_layers, 1, bricks.z);
   if (per_layer > budget)
-    fail("one layer of {} x {} bricks needs {} MiB of device memory, more than the --memory-budget of {} MiB",
-         bricks.x, bricks.y, per_layer >> 20, budget >> 20);
+    fail("one layer of {} x {} bricks needs {} MiB of device memory, more than the {} of {} MiB", bricks.x,
+         bricks.y, per_layer >> 20, memory_budget ? "--memory-budget" : "device's default budget",
+         budget >> 20);
 
   VoxelizeStats local;
   uint64_t sliced =
@@ -147,7 +149,12 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
     build_rank_index(cl_, brick_grid_);
     const uint64_t slots = brick_grid_.voxels_set;
     const uint64_t slab_bytes = (table_words + 1) * 8 + slots * per_slot;
-    if ((slab_bytes > budget || slots * per_slot > 2 * cl_.device().max_allocation) && layers > 1) {
+    // Halve the slab when its buffers pass the budget, one of them the device's largest allocation (the
+    // slots' bits; with channels their rank index and the packed sums of the planned 128 voxels per brick),
+    // or its planned voxels the 2^32 ranks of the attribute channels.
+    const uint64_t largest = options.channels.sparse() ? std::max(slots * 128, slots * 128 * 16) : slots * 64;
+    const bool too_many_ranks = options.channels.sparse() && slots * 128 >= (uint64_t(1) << 32);
+    if ((slab_bytes > budget || largest > cl_.device().max_allocation || too_many_ranks) && layers > 1) {
       slab_layers = std::max<uint32_t>(1, layers / 2);  // too many bricks for one slab: halve and redo
       continue;
     }

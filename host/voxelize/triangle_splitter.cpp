@@ -141,9 +141,10 @@ std::optional<TriangleSoup> split_oversized_triangles(const TriangleSoup& soup, 
   out.colors.looks = colors.looks;
   out.colors.textures = colors.textures;
   Splitter splitter{m, grid, cull, out};
-  splitter.rgba = !colors.vertex_rgba.empty();
-  splitter.uv = !colors.vertex_uv.empty();
-  splitter.looks = !colors.triangle_look.empty();
+  // Colour arrays are empty or full length (validate_soup); a shorter one is treated as absent here.
+  splitter.rgba = colors.vertex_rgba.size() >= soup.positions.size() && !colors.vertex_rgba.empty();
+  splitter.uv = colors.vertex_uv.size() >= soup.positions.size() && !colors.vertex_uv.empty();
+  splitter.looks = colors.triangle_look.size() >= soup.triangles.size() && !colors.triangle_look.empty();
   for (size_t i = 0; i < soup.triangles.size(); ++i) {
     const glm::uvec4& t = soup.triangles[i];
     const uint32_t look = splitter.looks ? colors.triangle_look[i] : 0u;

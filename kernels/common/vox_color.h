@@ -40,7 +40,8 @@ typedef struct VoxCentre {
 } VoxCentre;
 
 /* The centre of voxel (i, j, k) in the snapped triangles' fixed point: the one place that maps a voxel index
- * to a position for the colour sample (a grid window's first slab would be added here). */
+ * to a position for the colour sample. In a window of slices (VoxGridParams.first_slice) k and the snapped
+ * vertices are both relative to the window's first slice, so the sample needs no offset. */
 inline VoxCentre vox_voxel_centre(const VoxGridParams* grid, int i, int j, int k) {
   (void)grid;
   VoxCentre c;
