@@ -148,7 +148,9 @@ TEST(SparseVoxelGrid, ToSparseAndBackIsTheIdentity) {
   // Bricks ascend, hold a voxel each, and their ranks add up.
   ASSERT_EQ(sparse.brick_rank.size(), sparse.bricks() + 1);
   for (size_t b = 0; b < sparse.bricks(); ++b) {
-    if (b > 0) EXPECT_LT(sparse.brick_index[b - 1], sparse.brick_index[b]);
+    if (b > 0) {
+      EXPECT_LT(sparse.brick_index[b - 1], sparse.brick_index[b]);
+    }
     uint64_t set = 0;
     for (uint32_t w = 0; w < kBrickWords; ++w) set += std::popcount(sparse.brick_bits[b * kBrickWords + w]);
     EXPECT_GT(set, 0u);
