@@ -362,12 +362,7 @@ int run_voxelize(const VoxelizeArgs& args) {
     result = voxelizer.run(soup, grid, options, &stats, &bounds);
   }
   const ChannelSet result_channels = sparse_layout ? sparse_result.channels : result.channels;
-  const uint64_t host_bytes = sparse_layout
-                                  ? sparse_result.memory_bytes()
-                                  : (result.occ.size() + result.inside.size() + result.count.size() +
-                                     result.material.size() + result.color.size()) *
-                                            4 +
-                                        (result.normal_sum.size() + result.normal.size()) * 12;
+  const uint64_t host_bytes = sparse_layout ? sparse_result.memory_bytes() : result.memory_bytes();
   if (!sparse_layout && memory_budget)
     fmt::print(
         stderr,

@@ -38,6 +38,12 @@ struct VoxelGrid {
   BitWords inside;
   uint64_t inside_voxels = 0;
 
+  // Host memory of the bits and channels, in bytes (as SparseVoxelGrid::memory_bytes).
+  uint64_t memory_bytes() const {
+    return (occ.size() + inside.size() + count.size() + material.size() + color.size()) * 4 +
+           (normal_sum.size() + normal.size()) * 12;
+  }
+
   bool occupied(uint64_t linear) const { return (occ[linear >> 5] >> (linear & 31)) & 1u; }
   bool occupied(uint32_t i, uint32_t j, uint32_t k) const { return occupied(spec.linear_index(i, j, k)); }
   bool is_inside(uint64_t linear) const { return (inside[linear >> 5] >> (linear & 31)) & 1u; }

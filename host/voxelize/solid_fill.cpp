@@ -39,13 +39,6 @@ Defines cross_defines(SolidMode mode) {
               "VOX_SOLID_ODD", mode == SolidMode::kLate ? "1" : "0");
 }
 
-VoxelizeOptions flood_surface_options() {
-  VoxelizeOptions options;
-  options.method = VoxelizeMethod::kHybrid;
-  options.mode = RasterMode::kConservative;
-  return options;
-}
-
 }  // namespace
 
 SolidFill::SolidFill(ClRuntime& cl) : cl_(cl), scratch_(cl) {}
@@ -61,7 +54,7 @@ std::vector<ProgramSpec> SolidFill::programs(SolidMode mode) const {
     specs.push_back({"vox_solid_pack.cl", group()});
     specs.push_back({"vox_solid_flood.cl", group()});
     const std::vector<ProgramSpec> surface =
-        SliceVoxelizer(cl_, VoxelizeMethod::kHybrid).programs(flood_surface_options());
+        SliceVoxelizer(cl_, VoxelizeMethod::kHybrid).programs(conservative_occupancy_options());
     specs.insert(specs.end(), surface.begin(), surface.end());
     return specs;
   }
@@ -86,7 +79,7 @@ void SolidFill::run(const DeviceMesh& mesh, const GridSpec& grid, SolidMode mode
       if (!surface_) surface_ = std::make_unique<SliceVoxelizer>(cl_, VoxelizeMethod::kHybrid);
       surface_grid_.reset(grid, ChannelSet{});
       VoxelizeStats surface_stats;
-      surface_->run(mesh, grid, flood_surface_options(), surface_grid_, surface_stats);
+      surface_->run(mesh, grid, conservative_occupancy_options(), surface_grid_, surface_stats);
       run_flood(mesh, grid, surface_grid_.occ.buffer, padded, stats);
     }
   } else {

@@ -55,24 +55,13 @@ void SparseVoxelizer::validate(const VoxelizeOptions& options) {
   if (options.triangle_lists) fail("triangle lists are built on dense grids only");
 }
 
-namespace {
-
-VoxelizeOptions coarse_options() {
-  VoxelizeOptions coarse;
-  coarse.method = VoxelizeMethod::kHybrid;
-  coarse.mode = RasterMode::kConservative;
-  return coarse;
-}
-
-}  // namespace
-
 void SparseVoxelizer::prepare(const VoxelizeOptions& options) {
   validate(options);
   if (!fine_ || fine_method_ != options.method) {
     fine_ = std::make_unique<SliceVoxelizer>(cl_, options.method);
     fine_method_ = options.method;
   }
-  cl_.build_programs(coarse_->programs(coarse_options()));
+  cl_.build_programs(coarse_->programs(conservative_occupancy_options()));
   cl_.build_programs(fine_->sparse_programs(options));
 }
 
@@ -125,8 +114,8 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
          budget >> 20);
 
   VoxelizeStats local;
-  uint64_t sliced =
-      0;  // triangles the slabs' fine passes gave to the slice path (a triangle in two slabs twice)
+  // Triangles the slabs' fine passes gave to the slice path (a triangle in two slabs counts twice).
+  uint64_t sliced = 0;
   SparseStats sparse;
   sparse.memory_budget = budget;
   std::vector<uint32_t> brick_bits_host;
@@ -143,16 +132,17 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
     const uint64_t table_words = brick_grid_.words();
     brick_grid_.ranked.ensure(cl_, (table_words + 1) * 8, "the brick table");
     VoxelizeStats coarse_stats;
-    coarse_->run(mesh, coarse, coarse_options(), SliceWindow{first_layer, layers, extra_margin, nullptr},
-                 brick_grid_, coarse_stats);
+    coarse_->run(mesh, coarse, conservative_occupancy_options(),
+                 SliceWindow{first_layer, layers, extra_margin, nullptr}, brick_grid_, coarse_stats);
     // 2. the slots: the rank index of the brick bits, and the flag a kernel sets for a voxel outside them.
     build_rank_index(cl_, brick_grid_);
     const uint64_t slots = brick_grid_.voxels_set;
-    const uint64_t slab_bytes = (table_words + 1) * 8 + slots * per_slot;
+    const uint64_t table_bytes = (table_words + 1) * 8;
+    const uint64_t slab_bytes = table_bytes + slots * per_slot;
     // Halve the slab when its buffers pass the budget, one of them the device's largest allocation (the
     // slots' bits; with channels their rank index and the packed sums of the planned 128 voxels per brick),
     // or its planned voxels the 2^32 ranks of the attribute channels.
-    const uint64_t largest = options.channels.sparse() ? std::max(slots * 128, slots * 128 * 16) : slots * 64;
+    const uint64_t largest = options.channels.sparse() ? slots * 128 * 16 : slots * 64;
     const bool too_many_ranks = options.channels.sparse() && slots * 128 >= (uint64_t(1) << 32);
     if ((slab_bytes > budget || largest > cl_.device().max_allocation || too_many_ranks) && layers > 1) {
       slab_layers = std::max<uint32_t>(1, layers / 2);  // too many bricks for one slab: halve and redo
@@ -165,7 +155,6 @@ SparseVoxelGrid SparseVoxelizer::run(const TriangleSoup& soup, const GridSpec& g
     brick_bits_host.resize(table_words);
     cl_.download(brick_grid_.occ.buffer, brick_bits_host.data(), table_words * 4, "readback brick bits");
     brick_grid_.occ.release();
-    const uint64_t table_bytes = (table_words + 1) * 8;
 
     // 3. fine pass into the slots.
     const uint32_t first_slice = first_layer * kBrickEdge;

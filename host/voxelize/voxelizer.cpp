@@ -49,6 +49,13 @@ void VoxelizeOptions::validate() const {
          info.name, channels.to_string());
 }
 
+VoxelizeOptions conservative_occupancy_options() {
+  VoxelizeOptions options;
+  options.method = VoxelizeMethod::kHybrid;
+  options.mode = RasterMode::kConservative;
+  return options;
+}
+
 VoxelizeOptions VoxelizeOptions::surface_only() const {
   VoxelizeOptions surface = *this;
   surface.channels.remove(Channel::kInside);

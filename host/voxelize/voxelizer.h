@@ -4,8 +4,8 @@
 //
 // Methods (the surface set; every method gives occ, the slice family also count, normal, material):
 //   hybrid    default: small triangles voxelized directly, one work item each (vox_direct.cl, Schwarz &
-//             Seidel 2010 §3's triangle-parallel pass); triangles whose cell range exceeds 16 per axis or 1024
-//             in all take the papers' slice duplication below. Same voxels as `slice`.
+//             Seidel 2010 §3's triangle-parallel pass); triangles whose cell range exceeds 16 per axis or
+//             1024 in all take the papers' slice duplication below. Same voxels as `slice`.
 //   slice     Chang & Lai (TR 1688, PG 2011): every triangle duplicated once per slab and block of rows
 //             (vox_setup -> scan -> expand_copies, the geometry shader's duplication) and
 //             scanline-rasterized (vox_raster). Kept as the papers' method for Table 1.
@@ -114,6 +114,10 @@ struct VoxelizeStats {
   std::map<std::string, double> stage_ms;  // profiled kernel time per stage
   double total_ms() const { return upload_ms + kernels_ms + readback_ms; }
 };
+
+// Hybrid, conservative, occupancy only, whatever the user asked for: the surface that later stages build on
+// (the solid's flood fill, the sparse layout's coarse pass over bricks), which must be a superset.
+VoxelizeOptions conservative_occupancy_options();
 
 // One surface method (an entry of kMethods); the Voxelizer owns one of each it has used.
 class SurfaceVoxelizer {
