@@ -5,20 +5,11 @@
 
 #include <fmt/format.h>
 
-#include <stdexcept>
 #include <string>
 
+#include "voxr/error.h"  // Error, InternalError: one definition for the internals and the public API
+
 namespace voxr {
-
-class Error : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-class InternalError : public std::logic_error {
- public:
-  using std::logic_error::logic_error;
-};
 
 template <typename... Args>
 [[noreturn]] void fail(fmt::format_string<Args...> format, Args&&... args) {
