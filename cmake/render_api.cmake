@@ -17,3 +17,8 @@ target_link_options(voxr_render_api PRIVATE -Wl,--exclude-libs,ALL
                     -Wl,--version-script=${CMAKE_SOURCE_DIR}/cmake/voxr_api.map)
 set_property(TARGET voxr_render_api APPEND PROPERTY LINK_DEPENDS ${CMAKE_SOURCE_DIR}/cmake/voxr_api.map)
 add_library(voxr::render ALIAS voxr_render_api)
+
+# libvoxr exports namespace voxr only as well (the same version script; the API file's std:: instances would
+# be exported otherwise). Here rather than in the top-level CMakeLists: it belongs with the package's checks.
+target_link_options(voxr_api PRIVATE -Wl,--version-script=${CMAKE_SOURCE_DIR}/cmake/voxr_api.map)
+set_property(TARGET voxr_api APPEND PROPERTY LINK_DEPENDS ${CMAKE_SOURCE_DIR}/cmake/voxr_api.map)
