@@ -40,6 +40,30 @@ testing::AssertionResult same_pixels(const RenderedImage& api, const ImageRgba& 
   return testing::AssertionSuccess();
 }
 
+// The public header spells the CLI's defaults out; they must stay the CLI's (RenderJob's).
+TEST(RenderApi, DefaultsAreTheCliDefaults) {
+  const RenderSettings s;
+  const RenderJob job;
+  EXPECT_EQ(s.refraction, job.refraction);
+  EXPECT_EQ(s.shadows, job.shadows);
+  EXPECT_EQ(s.shadow_res, job.shadow_res);
+  EXPECT_EQ(s.res, job.res);
+  EXPECT_EQ(s.mode, job.mode);
+  EXPECT_EQ(s.bias, job.bias);
+  EXPECT_EQ(s.normal_offset, job.normal_offset);
+  EXPECT_EQ(s.refraction_grid, job.refraction_grid);
+  EXPECT_EQ(s.coarse_res, job.coarse_res);
+  EXPECT_EQ(s.step, job.step);
+  EXPECT_EQ(s.normals, job.normals);
+  EXPECT_EQ(s.angle_threshold, job.angle_threshold);
+  EXPECT_EQ(s.layers, job.layers);
+  EXPECT_EQ(s.layer_res, job.layer_res);
+  EXPECT_EQ(s.dm_depth, 0u);  // 0: job.dm_depth
+  EXPECT_EQ(s.frames, job.frames);
+  EXPECT_EQ(s.error_target, job.error_target);
+  EXPECT_EQ(s.compare_reference, job.compare_reference);
+}
+
 TEST(RenderApi, SamePixelsAsTheCliJob) {
   RenderJob job;
   job.size = {kWidth, kHeight};

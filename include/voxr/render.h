@@ -24,9 +24,9 @@ namespace voxr {
 // only one method reads (mode; layers, layer_res, dm_depth) are refused with another when changed from
 // their defaults, as the CLI refuses the flags.
 struct RenderSettings {
-  std::string scene;             // scene file (.json) or mesh; empty: the built-in default scene
-  std::string shadows;           // --shadows: voxel, uniform, filter, opaque, voxel-exact, reference,
-                                 // none; empty: voxel (reference with a reference refraction)
+  std::string scene;    // scene file (.json) or mesh; empty: the built-in default scene
+  std::string shadows;  // --shadows: voxel, uniform, filter, opaque, voxel-exact, reference,
+                        // none; empty: voxel (reference with a reference refraction)
   std::string refraction = "voxel-exact";  // --refraction (a scene without glass renders none)
   uint32_t width = 0, height = 0;          // --size; 0, 0: the scene camera's
   std::string device;                      // "P:D", "P", a name substring; empty: $VOXR_DEVICE or default
