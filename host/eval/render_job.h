@@ -71,7 +71,7 @@ struct RenderJobResult {
   bool animated = false;
   double fps = 0.0;
   RenderOptions options;  // as run (the grids --error-target chose, refraction dropped without glass)
-  RefractionMethod asked_refraction;  // as asked
+  RefractionMethod asked_refraction = RefractionMethod::kNone;  // as asked
   TechniqueDescription shadow_description, refraction_description;
   FrameStats stats;                                     // the last frame's
   std::vector<double> frame_ms, pose_ms;                // per frame
