@@ -19,7 +19,7 @@
 #include <memory>
 
 #include "cl/cl_runtime.h"
-#include "cli/prepared_runtime.h"
+#include "cl/prepared_runtime.h"
 #include "core/animation.h"
 #include "core/default_scene.h"
 #include "core/scene.h"
@@ -114,8 +114,8 @@ RenderJobResult run_render_job(const RenderJob& args, const RenderJobHooks& hook
     if (hooks.status) hooks.status(line);
   };
 
-  std::future<cli::PreparedRuntime<FrameRenderer>> background =
-      cli::prepare_in_background<FrameRenderer>(args.device, options);
+  std::future<PreparedRuntime<FrameRenderer>> background =
+      prepare_in_background<FrameRenderer>(args.device, options);
   const auto load_start = Clock::now();
   status(fmt::format("reading {}...", args.input.empty() ? "the default scene" : args.input));
   Scene loaded = args.input.empty() ? default_scene() : load_input(args.input);
@@ -205,7 +205,7 @@ RenderJobResult run_render_job(const RenderJob& args, const RenderJobHooks& hook
     }
   };
   const auto wait_start = Clock::now();
-  cli::PreparedRuntime<FrameRenderer> prepared = background.get();
+  PreparedRuntime<FrameRenderer> prepared = background.get();
   const double wait_ms = ms_since(wait_start);
   status(reference_only ? "tracing the reference..." : "rendering...");
   prepared.engine->set_environment(environment);
