@@ -23,7 +23,7 @@ class Context:
     A Context runs one voxelization at a time; calls from several threads wait for each other.
     """
 
-    __slots__ = ("_context",)
+    __slots__ = ("_context", "__weakref__")
 
     def __init__(self, device: Union[str, int, None] = None) -> None:
         self._context = _core.Context(device_text(device))

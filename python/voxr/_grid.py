@@ -30,7 +30,7 @@ class VoxelGrid:
     * ``occupied_indices()`` writes a new (N, 3) uint32 array on each call.
     """
 
-    __slots__ = ("_volume", "_report")
+    __slots__ = ("_volume", "_report", "__weakref__")
 
     def __init__(self, volume: _core.Volume) -> None:
         self._volume = volume
