@@ -27,10 +27,10 @@ if [[ -f $build/CMakeCache.txt ]]; then
   # keeps them on). The ccache launcher, if the tree has one, stays in its cache.
   cache() { sed -n "s/^$1:[A-Z]*=//p" "$build/CMakeCache.txt"; }
   export CMAKE_GENERATOR=${CMAKE_GENERATOR:-$(cache CMAKE_GENERATOR)}
-  args+=(-C "build-dir=$build" -C cmake.build-type="$(cache CMAKE_BUILD_TYPE)")
+  args+=(--config-settings="build-dir=$build" --config-settings="cmake.build-type=$(cache CMAKE_BUILD_TYPE)")
   for option in VOXR_BUILD_TESTS VOXR_BUILD_BENCH VOXR_BUILD_VIEWER VOXR_WITH_OPENVDB; do
     value=$(cache $option)
-    [[ -n $value ]] && args+=(-C "cmake.define.$option=$value")
+    [[ -n $value ]] && args+=(--config-settings="cmake.define.$option=$value")
   done
 fi
 export CMAKE_BUILD_PARALLEL_LEVEL=${CMAKE_BUILD_PARALLEL_LEVEL:-$(nproc)}
