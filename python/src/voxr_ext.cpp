@@ -152,6 +152,7 @@ NB_MODULE(_core, m) {
       .def_rw("bounds", &voxr::VoxelizeSettings::bounds)
       .def_rw("method", &voxr::VoxelizeSettings::method)
       .def_rw("mode", &voxr::VoxelizeSettings::mode)
+      .def_rw("slicing", &voxr::VoxelizeSettings::slicing)
       .def_rw("channels", &voxr::VoxelizeSettings::channels)
       .def_rw("solid", &voxr::VoxelizeSettings::solid)
       .def_rw("layout", &voxr::VoxelizeSettings::layout)

@@ -60,7 +60,10 @@ def test_unreadable_and_unsupported_files(tmp_path: Path) -> None:
         (dict(solid="fill"), "fill"),
         (dict(res=100000), "100000"),
         (dict(method="slicemap", mode="center"), "slicemap"),
-        (dict(layout="sparse", solid="parity"), "sparse"),
+        (dict(layout="sparse", solid="parity"), "dense"),
+        (dict(layout="sparse", memory_budget="lots"), "lots"),
+        (dict(layout="sparse", memory_budget="12X"), "12X"),
+        (dict(method="slicemap", slicing="curved"), "curved"),
     ],
 )
 def test_bad_settings_are_voxr_errors(mesh, options: dict, word: str) -> None:
@@ -82,9 +85,9 @@ def test_bad_settings_are_voxr_errors(mesh, options: dict, word: str) -> None:
         (dict(bounds=(0, 0, 0, 1, 1, float("nan"))), ValueError, "bounds"),
         (dict(method=3), TypeError, "method"),
         (dict(channels=5), TypeError, "channels"),
-        (dict(memory_budget="lots"), ValueError, "memory_budget"),
-        (dict(memory_budget="12X"), ValueError, "memory_budget"),
         (dict(memory_budget=-1), ValueError, "memory_budget"),
+        (dict(memory_budget=2.5), TypeError, "memory_budget"),
+        (dict(slicing=1), TypeError, "slicing"),
     ],
 )
 def test_bad_argument_types(mesh, options: dict, exc: type, word: str) -> None:
@@ -94,13 +97,11 @@ def test_bad_argument_types(mesh, options: dict, exc: type, word: str) -> None:
 
 
 def test_memory_budget_text() -> None:
-    from voxr._options import memory_budget_bytes
+    from voxr._options import memory_budget_text
 
-    assert memory_budget_bytes("512M") == 512 << 20
-    assert memory_budget_bytes("2G") == 2 << 30
-    assert memory_budget_bytes("1.5GiB") == 3 << 29
-    assert memory_budget_bytes(None) == 0
-    assert memory_budget_bytes(1 << 24) == 1 << 24
+    assert memory_budget_text("512M") == "512M"
+    assert memory_budget_text(None) == ""
+    assert memory_budget_text(1 << 24) == str(1 << 24)
 
 
 @pytest.mark.parametrize(

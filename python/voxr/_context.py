@@ -38,11 +38,12 @@ class Context:
         mesh: Any,
         faces: Any = None,
         *,
-        res: int = 256,
+        res: Optional[int] = None,
         dims: Optional[Sequence[int]] = None,
         bounds: Optional[Sequence[float]] = None,
         method: str = "hybrid",
-        mode: str = "conservative",
+        mode: Optional[str] = None,
+        slicing: Optional[str] = None,
         channels: ChannelsArg = "occ",
         solid: Optional[str] = None,
         layout: str = "auto",
@@ -51,7 +52,7 @@ class Context:
     ) -> VoxelGrid:
         """Voxelizes a mesh on this Context's device; see ``voxr.voxelize``."""
         s = settings(
-            res=res, dims=dims, bounds=bounds, method=method, mode=mode, channels=channels, solid=solid,
+            res=res, dims=dims, bounds=bounds, method=method, mode=mode, slicing=slicing, channels=channels, solid=solid,
             layout=layout, memory_budget=memory_budget,
         )
         m = mesh_arrays(mesh, faces, materials)
@@ -61,11 +62,12 @@ class Context:
         self,
         path: PathLike,
         *,
-        res: int = 256,
+        res: Optional[int] = None,
         dims: Optional[Sequence[int]] = None,
         bounds: Optional[Sequence[float]] = None,
         method: str = "hybrid",
-        mode: str = "conservative",
+        mode: Optional[str] = None,
+        slicing: Optional[str] = None,
         channels: ChannelsArg = "occ",
         solid: Optional[str] = None,
         layout: str = "auto",
@@ -74,7 +76,7 @@ class Context:
         """Reads a mesh or scene file and voxelizes it as ``voxr voxelize FILE`` does; see
         ``voxr.voxelize_file``."""
         s = settings(
-            res=res, dims=dims, bounds=bounds, method=method, mode=mode, channels=channels, solid=solid,
+            res=res, dims=dims, bounds=bounds, method=method, mode=mode, slicing=slicing, channels=channels, solid=solid,
             layout=layout, memory_budget=memory_budget,
         )
         return VoxelGrid(self._context.voxelize_file(os.fspath(path), s))
@@ -103,11 +105,12 @@ def voxelize(
     mesh: Any,
     faces: Any = None,
     *,
-    res: int = 256,
+    res: Optional[int] = None,
     dims: Optional[Sequence[int]] = None,
     bounds: Optional[Sequence[float]] = None,
     method: str = "hybrid",
-    mode: str = "conservative",
+    mode: Optional[str] = None,
+    slicing: Optional[str] = None,
     channels: ChannelsArg = "occ",
     solid: Optional[str] = None,
     layout: str = "auto",
@@ -120,19 +123,21 @@ def voxelize(
     mesh: a (V, 3) vertex array-like with ``faces`` (F, 3) vertex indices, a ``trimesh.Trimesh`` or an
       ``open3d.geometry.TriangleMesh``. float64 vertices and uint32 faces (C-contiguous) are read in place;
       other float/int dtypes are converted (a copy).
-    res: voxels along the bounds' longest side (``--res``); dims: exact (nx, ny, nz) instead of res;
+    res: voxels along the bounds' longest side (``--res``; None: 256, or a scene file's own grid);
+    dims: exact (nx, ny, nz) instead of res;
     bounds: (x0, y0, z0, x1, y1, z1) world box used exactly (default: fitted with a quarter-voxel margin).
-    method: 'hybrid', 'slice', 'grid' or 'slicemap'; mode: 'conservative' or 'center';
+    method: 'hybrid', 'slice', 'grid' or 'slicemap'; mode: 'conservative' (None: the default) or 'center';
+    slicing: slicemap only, 'uniform' (None: the default) or 'local';
     channels: 'occ,count,normal,material,color' or a sequence of those names;
     solid: None, 'parity', 'xor', 'late' or 'flood' (adds the 'inside' channel);
-    layout: 'auto', 'dense' or 'sparse'; memory_budget: device bytes of a sparse run (int or '512M');
+    layout: 'auto', 'dense' or 'sparse'; memory_budget: device bytes of a sparse run (int, or '512M', '4G');
     device: as ``voxr.Context``; materials: (F,) material id per triangle (the 'material' channel).
 
     The GIL is released while the device works. Raises voxr.Error (voxr's one-line message) for what voxr
     refuses, TypeError/ValueError for arguments of the wrong type or shape.
     """
     return shared_context(device).voxelize(
-        mesh, faces, res=res, dims=dims, bounds=bounds, method=method, mode=mode, channels=channels,
+        mesh, faces, res=res, dims=dims, bounds=bounds, method=method, mode=mode, slicing=slicing, channels=channels,
         solid=solid, layout=layout, memory_budget=memory_budget, materials=materials,
     )
 
@@ -140,11 +145,12 @@ def voxelize(
 def voxelize_file(
     path: PathLike,
     *,
-    res: int = 256,
+    res: Optional[int] = None,
     dims: Optional[Sequence[int]] = None,
     bounds: Optional[Sequence[float]] = None,
     method: str = "hybrid",
-    mode: str = "conservative",
+    mode: Optional[str] = None,
+    slicing: Optional[str] = None,
     channels: ChannelsArg = "occ",
     solid: Optional[str] = None,
     layout: str = "auto",
@@ -155,6 +161,6 @@ def voxelize_file(
     ``voxr voxelize FILE`` does; the keywords are voxelize()'s. Raises voxr.Error naming the file when it
     cannot be read."""
     return shared_context(device).voxelize_file(
-        path, res=res, dims=dims, bounds=bounds, method=method, mode=mode, channels=channels, solid=solid,
+        path, res=res, dims=dims, bounds=bounds, method=method, mode=mode, slicing=slicing, channels=channels, solid=solid,
         layout=layout, memory_budget=memory_budget,
     )

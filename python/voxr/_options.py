@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import math
 import numbers
-import re
 from typing import Iterable, Optional, Sequence, Union
 
 from . import _core
@@ -50,23 +49,15 @@ def channels_text(channels: ChannelsArg) -> str:
     return ",".join(names)
 
 
-_SIZE = re.compile(r"^\s*([0-9]*\.?[0-9]+(?:[eE][+-]?[0-9]+)?)\s*([KMGTkmgt]?)(?:[iI]?[bB])?\s*$")
-
-
-def memory_budget_bytes(budget: MemoryBudget) -> int:
-    """Bytes from an int or a size text such as '512M' or '2G' (K, M, G, T: powers of 1024), as
-    `voxr voxelize --memory-budget` reads it; None gives 0 (voxr's default: from the device)."""
+def memory_budget_text(budget: MemoryBudget) -> str:
+    """The text `voxr voxelize --memory-budget` reads: bytes from an int, or a size such as '512M' or '2G'
+    (K, M, G, T: powers of 1024) passed to voxr as is (voxr checks it); None gives '' (voxr's default: from
+    the device)."""
     if budget is None:
-        return 0
+        return ""
     if isinstance(budget, str):
-        m = _SIZE.match(budget)
-        if not m:
-            raise ValueError(f"memory_budget '{budget}': expected a size such as 512M or 2G")
-        value = float(m.group(1)) * 1024 ** ("_KMGT".index(m.group(2).upper()) if m.group(2) else 0)
-        if not (value >= 1 << 20) or value > 1e18:
-            raise ValueError(f"memory_budget '{budget}': give at least 1M")
-        return int(value)
-    return _whole("memory_budget", budget, 1 << 20, 10**18)
+        return budget
+    return str(_whole("memory_budget", budget, 1, 10**18))
 
 
 def device_text(device: Union[str, int, None]) -> str:
@@ -80,11 +71,12 @@ def device_text(device: Union[str, int, None]) -> str:
 
 def settings(
     *,
-    res: int = 256,
+    res: Optional[int] = None,
     dims: Optional[Sequence[int]] = None,
     bounds: Optional[Sequence[float]] = None,
     method: str = "hybrid",
-    mode: str = "conservative",
+    mode: Optional[str] = None,
+    slicing: Optional[str] = None,
     channels: ChannelsArg = "occ",
     solid: Optional[str] = None,
     layout: str = "auto",
@@ -93,7 +85,7 @@ def settings(
 ) -> _core.Settings:
     """A checked voxr::VoxelizeSettings."""
     s = _core.Settings()
-    s.resolution = _whole("res", res)
+    s.resolution = 0 if res is None else _whole("res", res)
     if dims is not None:
         if isinstance(dims, (str, bytes)) or len(dims) != 3:
             raise ValueError(f"dims: expected 3 whole numbers (nx, ny, nz), got {dims!r}")
@@ -110,10 +102,11 @@ def settings(
             b.append(float(v))
         s.bounds = tuple(b)
     s.method = _text("method", method)
-    s.mode = _text("mode", mode)
+    s.mode = "" if mode is None else _text("mode", mode)
+    s.slicing = "" if slicing is None else _text("slicing", slicing)
     s.channels = channels_text(channels)
     s.solid = "" if solid is None else _text("solid", solid)
     s.layout = _text("layout", layout)
-    s.memory_budget = memory_budget_bytes(memory_budget)
+    s.memory_budget = memory_budget_text(memory_budget)
     s.device = device_text(device)
     return s
