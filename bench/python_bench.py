@@ -5,6 +5,7 @@ against the CLI's ms.wall on the same mesh, side by side with trimesh's `mesh.vo
 not). Target: voxr.voxelize <= 1.2x the CLI's ms.wall.
 
 usage: python bench/python_bench.py [MESH.off] [--res 512] [--repeat 7] [--cli PATH] [--peers-timeout S]
+                                   [--peers-memory GiB] [--no-peers]
   MESH: default /work/data/bunny_x16.off, else $VOXR_BENCH_MESH (`voxr bench voxelize` builds "bunnyx16";
   bench/color_mesh.py data/meshes/bunny.obj 2 OUT.ply makes the same mesh as a PLY).
 Runs the CLI and the Python call interleaved (one warm-up each, then REPEAT pairs) so both see the same
@@ -61,10 +62,15 @@ def cpu_model() -> str:
     return "unknown"
 
 
-def run_peer(peer: str, data: Path, pitch: float) -> dict:
+def run_peer(peer: str, data: Path, pitch: float, memory_gb: float = 0.0) -> dict:
     """One peer's voxelization of the mesh in `data` at `pitch` (run in a child process)."""
     with np.load(data) as z:
         v, f = z["v"], z["f"]
+    if memory_gb > 0:  # trimesh's subdivision grows fast: a MemoryError here, not an OOM on a shared machine
+        import resource
+
+        limit = int(memory_gb * (1 << 30))
+        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
     if peer == "trimesh":
         try:
             import trimesh
@@ -72,7 +78,10 @@ def run_peer(peer: str, data: Path, pitch: float) -> dict:
             return {"skip": "not installed (pip install trimesh)"}
         m = trimesh.Trimesh(vertices=v, faces=f, process=False)
         t = time.perf_counter()
-        vg = m.voxelized(pitch=pitch)  # subdivides until every edge is shorter than the pitch
+        try:
+            vg = m.voxelized(pitch=pitch)  # subdivides until every edge is shorter than the pitch
+        except MemoryError:
+            return {"skip": f"MemoryError under the {memory_gb:g} GiB address-space limit (--peers-memory)"}
         ms = (time.perf_counter() - t) * 1e3
         return {"name": f"trimesh {trimesh.__version__} `mesh.voxelized(pitch)`", "ms": ms,
                 "voxels": int(vg.filled_count), "note": f"surface, shape {tuple(int(s) for s in vg.shape)}"}
@@ -97,14 +106,16 @@ def main() -> int:
     ap.add_argument("--repeat", type=int, default=7)
     ap.add_argument("--cli", default=None)
     ap.add_argument("--peers-timeout", type=float, default=600.0,
-                    help="skip a peer whose one run would pass this many seconds (trimesh's memory grows fast)")
+                    help="stop a peer's run after this many seconds")
+    ap.add_argument("--peers-memory", type=float, default=12.0,
+                    help="address-space limit of a peer's process, GiB (0: none)")
     ap.add_argument("--no-peers", action="store_true")
     ap.add_argument("--peer", help=argparse.SUPPRESS)
     ap.add_argument("--data", help=argparse.SUPPRESS)
     ap.add_argument("--pitch", type=float, help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.peer:
-        print(json.dumps(run_peer(args.peer, Path(args.data), args.pitch)))
+        print(json.dumps(run_peer(args.peer, Path(args.data), args.pitch, args.peers_memory)))
         return 0
     mesh = Path(args.mesh)
     cli = args.cli or cli_path()
@@ -155,7 +166,8 @@ def main() -> int:
     print("| peer | ms | voxels | note |")
     print("|---|---|---|---|")
     for peer in ("trimesh", "open3d"):
-        cmd = [sys.executable, __file__, "--peer", peer, "--data", str(data), "--pitch", repr(voxel_size)]
+        cmd = [sys.executable, __file__, "--peer", peer, "--data", str(data), "--pitch", repr(voxel_size),
+               "--peers-memory", str(args.peers_memory)]
         try:
             done = subprocess.run(cmd, capture_output=True, text=True, timeout=args.peers_timeout)
             lines = done.stdout.strip().splitlines()
