@@ -9,6 +9,7 @@ import time
 import weakref
 
 import numpy as np
+import pytest
 
 import voxr
 from conftest import mesh_path, read_off, torus
@@ -74,18 +75,13 @@ def longest_stall(ticks: np.ndarray, start: float, end: float) -> float:
     return float(np.diff(a).max())
 
 
-def test_gil_is_released_during_voxelize() -> None:
-    """A Python thread keeps running while voxelize and the occupancy expansion work: the longest pause it
-    sees is far below each call's duration (with the GIL held it would be the whole call)."""
-    path = mesh_path("armadillo.off")
-    v, f = read_off(path)
-    f = f.astype(np.uint32)
-    voxr.voxelize(v, f, res=32)  # the Context and programs, outside the timed call
+def gil_attempt(v: np.ndarray, f: np.ndarray) -> list:
+    """One voxelize + occupancy in a thread while this thread ticks; the windows where it stalled."""
     times = {}
 
     def work() -> None:
         times["start"] = time.perf_counter()
-        grid = voxr.voxelize(v, f, res=384, channels="occ,count,normal")
+        grid = voxr.voxelize(v, f, res=448, channels="occ,count,normal")
         times["voxelized"] = time.perf_counter()
         grid.occupancy  # the bit expansion releases the GIL too
         times["expanded"] = time.perf_counter()
@@ -98,9 +94,28 @@ def test_gil_is_released_during_voxelize() -> None:
         sum(range(200))  # Python work
     thread.join()
     ticks = np.array(ticks)
+    stalls = []
     for what, start, end in [("voxelize", times["start"], times["voxelized"]),
                              ("occupancy", times["voxelized"], times["expanded"])]:
         seconds = end - start
         assert seconds > 0.02, f"{what}: the call must be long enough to tell ({seconds:.3f} s)"
         stall = longest_stall(ticks, start, end)
-        assert stall < 0.5 * seconds, f"{what}: the Python thread stalled {stall:.3f} s of {seconds:.3f} s: GIL held?"
+        if stall >= 0.5 * seconds:
+            stalls.append(f"{what}: the Python thread stalled {stall:.3f} s of {seconds:.3f} s")
+    return stalls
+
+
+def test_gil_is_released_during_voxelize() -> None:
+    """A Python thread keeps running while voxelize and the occupancy expansion work: the longest pause it
+    sees is far below each call's duration (with the GIL held it would be the whole call). Up to 3 tries,
+    so one scheduling hiccup on a loaded machine does not fail it; a held GIL fails every try."""
+    v, f = read_off(mesh_path("armadillo.off"))
+    f = f.astype(np.uint32)
+    voxr.voxelize(v, f, res=32)  # the Context and programs, outside the timed calls
+    failures = []
+    for _ in range(3):
+        stalls = gil_attempt(v, f)
+        if not stalls:
+            return
+        failures.append("; ".join(stalls))
+    pytest.fail("GIL held? " + " | ".join(failures))
