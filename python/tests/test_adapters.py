@@ -51,3 +51,24 @@ def test_open3d_mesh() -> None:
     assert np.array_equal(grid.count, ref.count)
     with pytest.raises(TypeError, match="faces"):
         voxr.voxelize(mesh, f)
+
+
+def test_package_surface() -> None:
+    """voxr.render stays the function when voxr.render (the module) is imported, and the lazy names
+    resolve or say they are not part of this build."""
+    import importlib
+    import types
+
+    try:
+        importlib.import_module("voxr.render")
+    except ModuleNotFoundError:
+        with pytest.raises(voxr.Error, match="not part of this build"):
+            voxr.render()
+    assert callable(voxr.render) and not isinstance(voxr.render, types.ModuleType)
+    for name in ("voxelize_files", "dask"):
+        try:
+            getattr(voxr, name)
+        except AttributeError as e:
+            assert "not part of this build" in str(e)
+    with pytest.raises(AttributeError):
+        voxr.no_such_name

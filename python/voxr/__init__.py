@@ -44,12 +44,18 @@ def devices() -> List[dict]:
     return list(_core.devices())
 
 
-def render(*args: Any, **kwargs: Any) -> Any:
-    """Renders a scene: ``voxr.render(scene=None, *, shadows=None, refraction=None, size=(640, 480), ...)``
-    -> (float32 (H, W, 4) image, report dict). Implemented in voxr.render (imported on first call)."""
-    from .render import render as _render
+# voxr.render (python/voxr/render.py) imports only NumPy at module level (its extension on first call), so it is
+# imported here: a lazy wrapper named `render` would be replaced by the submodule as soon as anything imports
+# voxr.render (the import system sets the package attribute), and `voxr.render(...)` would then call a module.
+try:
+    from .render import render
+except ModuleNotFoundError as _e:
+    if _e.name != f"{__name__}.render":
+        raise
 
-    return _render(*args, **kwargs)
+    def render(*args: Any, **kwargs: Any) -> Any:  # type: ignore[misc]
+        """Renders a scene (voxr.render); not part of this build."""
+        raise Error("voxr.render: the render module is not part of this build")
 
 
 def __getattr__(name: str) -> Any:
