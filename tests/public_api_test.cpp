@@ -6,8 +6,10 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
+#include <random>
 #include <set>
 
 #include "core/grid_spec.h"
@@ -249,6 +251,52 @@ TEST(PublicApi, BadInputThrowsOneLine) {
   const VoxelVolume v = voxelize(m.view(), settings);
   std::vector<uint8_t> small(3);
   expect_error([&] { v.occupancy(small); }, "occupancy");
+}
+
+}  // namespace
+}  // namespace voxr::test
+
+namespace voxr::test {
+namespace {
+
+// soup_from_arrays is load_mesh's soup without the file: the same anchor, float positions and triangles as
+// a PLY of the same doubles, and the bounds it finds on the way have soup.bounds()'s bits, ties of -0 and +0
+// included.
+TEST(SoupFromArrays, EqualsTheFileSoupAndItsBounds) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coord(-3.0, 5.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    ArrayMesh m;
+    const uint32_t vertices = 5 + trial;
+    for (uint32_t v = 0; v < 3 * vertices; ++v)
+      m.positions.push_back(trial % 4 == 0 && v % 7 == 0 ? (v % 2 ? -0.0 : 0.0) : coord(rng));
+    for (uint32_t t = 0; t < 2 * vertices; ++t)
+      for (int c = 0; c < 3; ++c) m.triangles.push_back(rng() % (vertices - 1));  // the last vertex unused
+    m.positions[3 * (vertices - 1)] = 1e6;  // far, but unused: not in the bounds
+    TempDir dir;
+    const TriangleSoup file = load_mesh(dir.write("m.ply", ply_text(m)));
+    Bounds bounds;
+    const TriangleSoup soup = soup_from_arrays(m.positions, m.triangles, {}, "m", &bounds);
+    SCOPED_TRACE(trial);
+    EXPECT_EQ(soup.anchor, file.anchor);
+    ASSERT_EQ(soup.positions.size(), file.positions.size());
+    EXPECT_EQ(
+        std::memcmp(soup.positions.data(), file.positions.data(), soup.positions.size() * sizeof(glm::vec4)),
+        0);
+    ASSERT_EQ(soup.triangles.size(), file.triangles.size());
+    EXPECT_EQ(
+        std::memcmp(soup.triangles.data(), file.triangles.data(), soup.triangles.size() * sizeof(glm::uvec4)),
+        0);
+    const Bounds expected = soup.bounds();
+    EXPECT_EQ(std::memcmp(&bounds, &expected, sizeof(Bounds)), 0);
+  }
+  // A tie at the lower x bound: +0 comes first in vertex order, -0 in corner order.
+  const std::vector<double> positions = {0.0, 0, 0, 1, 0, 0, 0, 1, 0, -0.0, 0, 1};
+  const std::vector<uint32_t> triangles = {3, 1, 2, 0, 1, 2};
+  Bounds bounds;
+  const TriangleSoup soup = soup_from_arrays(positions, triangles, {}, "tie", &bounds);
+  EXPECT_TRUE(std::signbit(soup.bounds().lo.x));
+  EXPECT_TRUE(std::signbit(bounds.lo.x));
 }
 
 }  // namespace

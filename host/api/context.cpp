@@ -3,6 +3,7 @@
 // bit.
 #include <fmt/format.h>
 
+#include <functional>
 #include <map>
 #include <mutex>
 
@@ -10,6 +11,7 @@
 #include "cl/cl_runtime.h"
 #include "cl/device.h"
 #include "core/mesh_loader.h"
+#include "util/clock.h"
 #include "util/error.h"
 
 namespace voxr {
@@ -35,9 +37,13 @@ struct Context::State {
   std::unique_ptr<ClRuntime> cl;
   std::unique_ptr<Voxelizer> voxelizer;
   std::unique_ptr<SparseVoxelizer> bricks;
-  std::mutex run;  // one run at a time (the one-shot functions share a Context between threads)
+  std::mutex run;      // one run at a time (the one-shot functions share a Context between threads)
+  TriangleSoup spare;  // the last run's soup, whose buffers the next arrays' soup fills
 
-  VoxelVolume voxelize(Scene&& scene, const VoxelizeSettings& settings) {
+  // `read` makes the input (a file read, or the caller's arrays converted) and prepares it for `options`:
+  // timed with the grid fit as the report's ms.load, as the CLI times its input.
+  VoxelVolume voxelize(const std::function<VoxelizeInput(VoxelizeOptions&)>& read,
+                       const VoxelizeSettings& settings) {
     VoxelizeOptions options = make_voxelize_options(
         {settings.method, settings.mode, settings.slicing, settings.channels, settings.solid, 16});
     const GridLayout layout = parse_grid_layout(settings.layout);
@@ -64,9 +70,11 @@ struct Context::State {
 
     auto impl = std::make_shared<VoxelVolume::Impl>();
     const std::lock_guard lock(run);
-    VoxelizeInput input = prepare_voxelize_input(std::move(scene), options);
+    const auto load_start = Clock::now();
+    VoxelizeInput input = read(options);
     const GridRequest request = choose_grid_request(input.request, choice);
     impl->grid = fit_grid(input.bounds, request, input.soup.anchor);
+    const double load_ms = ms_since(load_start);
     voxelizer->prepare(options);
     impl->result = run_voxelize_job(*cl, *voxelizer, bricks, input, impl->grid, options, layout, budget,
                                     settings.bounds.has_value());
@@ -83,7 +91,10 @@ struct Context::State {
     report.layout = impl->result.sparse ? "sparse" : "dense";
     report.warnings = std::move(input.warnings);
     report.warnings.insert(report.warnings.end(), impl->result.warnings.begin(), impl->result.warnings.end());
-    report.json = voxelize_report(input.source, *cl, impl->grid, options, impl->result).dump();
+    spare = std::move(input.soup);
+    nlohmann::json json = voxelize_report(input.source, *cl, impl->grid, options, impl->result);
+    json["ms"]["load"] = load_ms;
+    report.json = json.dump();
     return VoxelVolume(std::move(impl));
   }
 };
@@ -103,14 +114,22 @@ DeviceDescription Context::device() const {
 
 VoxelVolume Context::voxelize(const MeshView& mesh, const VoxelizeSettings& settings) {
   return state_->voxelize(
-      scene_from_mesh(soup_from_arrays(mesh.positions, mesh.triangles, mesh.materials, mesh.name), mesh.name),
+      [&](VoxelizeOptions& options) {
+        // A mesh file's scene (scene_from_mesh) without the scene: its grid request is the default one, and
+        // soup_from_arrays has checked what validate_soup would.
+        Bounds bounds;
+        TriangleSoup soup = soup_from_arrays(mesh.positions, mesh.triangles, mesh.materials, mesh.name,
+                                             &bounds, std::move(state_->spare));
+        return prepare_voxelize_input(std::move(soup), mesh.name, GridRequest(), {}, options, true, &bounds);
+      },
       settings);
 }
 
 VoxelVolume Context::voxelize_file(const std::string& path, const VoxelizeSettings& settings) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) fail("{}: no such file", path);
-  return state_->voxelize(load_input(path), settings);
+  return state_->voxelize(
+      [&](VoxelizeOptions& options) { return prepare_voxelize_input(load_input(path), options); }, settings);
 }
 
 std::vector<DeviceDescription> devices() {

@@ -35,8 +35,11 @@ TriangleSoup load_mesh(const std::filesystem::path& file, std::vector<std::strin
 // with the same numbers (same anchor, same float positions): positions is vertex_count x 3 doubles (x, y, z),
 // triangles is triangle_count x 3 vertex indices, materials is empty or one id per triangle. Throws
 // voxr::Error starting with `name` when a size is not a multiple of 3 (or materials' is not the triangle
-// count), there are no triangles, an index is out of range, or a position is NaN or infinite.
+// count), there are no triangles, an index is out of range, or a position is NaN or infinite. `bounds`
+// (optional) receives soup.bounds(), found on the way. `reuse`: a soup done with, whose buffers are filled
+// instead of new ones (a caller converting many meshes saves the allocations and their page faults).
 TriangleSoup soup_from_arrays(std::span<const double> positions, std::span<const uint32_t> triangles,
-                              std::span<const uint32_t> materials, const std::string& name);
+                              std::span<const uint32_t> materials, const std::string& name,
+                              Bounds* bounds = nullptr, TriangleSoup reuse = {});
 
 }  // namespace voxr

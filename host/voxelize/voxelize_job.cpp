@@ -30,17 +30,27 @@ VoxelizeOptions make_voxelize_options(const VoxelizeChoice& choice) {
 }
 
 VoxelizeInput prepare_voxelize_input(Scene&& scene, VoxelizeOptions& options) {
-  VoxelizeInput in;
-  in.source = scene.source;
-  in.request = scene.grid;
+  std::vector<std::string> warnings;
   for (const MeshInstance& m : scene.meshes)
-    in.warnings.insert(in.warnings.end(), m.warnings.begin(), m.warnings.end());
-  in.warnings.insert(in.warnings.end(), scene.warnings.begin(), scene.warnings.end());
-  in.soup = take_scene_triangles(scene);
-  in.degenerate = validate_soup(in.soup, scene.source);
+    warnings.insert(warnings.end(), m.warnings.begin(), m.warnings.end());
+  warnings.insert(warnings.end(), scene.warnings.begin(), scene.warnings.end());
+  TriangleSoup soup = take_scene_triangles(scene);
+  return prepare_voxelize_input(std::move(soup), scene.source, scene.grid, std::move(warnings), options,
+                                false);
+}
+
+VoxelizeInput prepare_voxelize_input(TriangleSoup&& soup, const std::string& source,
+                                     const GridRequest& request, std::vector<std::string> warnings,
+                                     VoxelizeOptions& options, bool validated, const Bounds* bounds) {
+  VoxelizeInput in;
+  in.source = source;
+  in.request = request;
+  in.warnings = std::move(warnings);
+  in.soup = std::move(soup);
+  if (!validated) in.degenerate = validate_soup(in.soup, source);
   if (options.channels.has(Channel::kColor) && in.soup.colors.empty())
-    in.warnings.push_back(fmt::format("{} has no colours; the color channel is white", scene.source));
-  in.bounds = in.soup.bounds();
+    in.warnings.push_back(fmt::format("{} has no colours; the color channel is white", source));
+  in.bounds = bounds ? *bounds : in.soup.bounds();
   if (options.solid) {
     // Closure is judged on welded positions; a triangle listed twice would flip every column parity
     // through it, and the winding-number definition of inside ignores the copy, so copies go.
@@ -50,7 +60,7 @@ VoxelizeInput prepare_voxelize_input(Scene&& scene, VoxelizeOptions& options) {
       in.warnings.push_back(
           fmt::format("{}: {} triangles repeat an earlier triangle exactly (first: triangle {}); the copies "
                       "were dropped",
-                      scene.source, topology.duplicates, topology.first_duplicate));
+                      source, topology.duplicates, topology.first_duplicate));
     }
     if (!topology.closed() && (options.solid == SolidMode::kParity || options.solid == SolidMode::kXor)) {
       // Column parity needs a closed surface. Late filling repairs the columns that cross a hole from their
@@ -59,7 +69,7 @@ VoxelizeInput prepare_voxelize_input(Scene&& scene, VoxelizeOptions& options) {
       in.warnings.push_back(
           fmt::format("{} is not closed ({}); solid {} would leak through the holes, using "
                       "solid late",
-                      scene.source, topology.describe(in.soup.anchor), solid_mode_name(*options.solid)));
+                      source, topology.describe(in.soup.anchor), solid_mode_name(*options.solid)));
       options.solid = SolidMode::kLate;
       in.solid_switched = true;
     }

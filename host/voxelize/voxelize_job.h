@@ -51,6 +51,13 @@ struct VoxelizeInput {
 // comment). Throws voxr::Error naming the scene's source when it has no triangles, an index out of range or a
 // NaN/infinite vertex.
 VoxelizeInput prepare_voxelize_input(Scene&& scene, VoxelizeOptions& options);
+// The same for a soup made elsewhere (the public API's arrays, soup_from_arrays): `validated` skips
+// validate_soup when the maker has checked indices and positions already (degenerate then stays 0); `bounds`
+// (optional): soup.bounds(), when the maker found it on the way.
+VoxelizeInput prepare_voxelize_input(TriangleSoup&& soup, const std::string& source,
+                                     const GridRequest& request, std::vector<std::string> warnings,
+                                     VoxelizeOptions& options, bool validated,
+                                     const Bounds* bounds = nullptr);
 
 // The user's grid choices over the scene's request: resolution (voxels along the longest side; 0 keeps the
 // scene's), exact dims, or world bounds. Throws voxr::Error when resolution and dims are both given.
