@@ -6,6 +6,7 @@ without them raises ImportError naming them. Running on a real cluster: docs/clu
 
 from __future__ import annotations
 
+import asyncio
 import os
 import socket
 import threading
@@ -142,11 +143,10 @@ def voxelize_files(
         with Progress(len(plan), desc="voxr.dask", enabled=progress) as bar:
             for future in distributed.as_completed(futures):
                 i = index[future.key]
-                if future.status == "finished":
+                try:
                     entries = future.result()
-                else:
-                    exc = future.exception()
-                    message = f"{type(exc).__name__}: {exc}"
+                except (Exception, asyncio.CancelledError) as exc:  # raised on the worker, or lost there
+                    message = f"{type(exc).__name__}: {exc}".splitlines()[0]
                     entries = [_failed_entry(p, message, worker=False) for p, _ in chunks[i]]
                 results[i] = entries
                 bar.update(len(entries), errors=sum(e["error"] is not None for e in entries))
