@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Install every Debian 12 package voxr needs to build, test, benchmark and view. Idempotent: packages
-# already present are skipped, so a second run costs one dpkg query.
+# already present are skipped, so a second run costs one dpkg query. python3-dev and python3-venv: the
+# Python package (pip install . in a venv; its own dependencies come from PyPI, scripts/python-check.sh).
 set -euo pipefail
 
 packages=(
@@ -9,6 +10,7 @@ packages=(
   libglm-dev libcgal-dev libassimp-dev nlohmann-json3-dev libfmt-dev libcli11-dev
   libpng-dev libopenexr-dev libstb-dev libopenimageio-dev openimageio-tools libembree-dev libvtk9-dev
   libgtest-dev libbenchmark-dev python3-matplotlib xvfb xauth libopenvdb-dev libboost-iostreams-dev libminizip-dev
+  python3-dev python3-venv
   glmark2-data libcgal-demo
 )
 

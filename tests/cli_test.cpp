@@ -174,8 +174,9 @@ TEST(Cli, MethodsAndTheirFlags) {
   }
   expect_one_line_error(run("voxelize " + mesh.string() + " --method octree"), "octree");
   expect_one_line_error(run("voxelize " + mesh.string() + " --method slicemap --mode conservative"),
-                        "--mode");
-  expect_one_line_error(run("voxelize " + mesh.string() + " --slicing local"), "--slicing");
+                        "mode does not apply to method slicemap");
+  expect_one_line_error(run("voxelize " + mesh.string() + " --slicing local"),
+                        "slicing applies to method slicemap");
   expect_one_line_error(run("voxelize " + mesh.string() + " --method slicemap --channels occ,count"), "occ");
 }
 
@@ -215,7 +216,7 @@ TEST(Cli, EmptyVolumeIsWrittenWithAWarning) {
         run("voxelize " + mesh.string() + " --bounds 5,5,5,6,6,6 --res 8 -q -o " + out.string() + solid);
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.err.find("warning: no voxel of the 8 x 8 x 8 grid touches"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("(check --bounds)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(check the bounds)"), std::string::npos) << r.err;
   }
   const Result r = run("voxelize " + mesh.string() + " --res 8 -q -o " + out.string());
   EXPECT_EQ(r.err, "");

@@ -3,6 +3,8 @@
 
 namespace voxr {
 
-std::string version() { return VOXR_VERSION; }
+std::string version() {
+  return VOXR_VERSION;
+}
 
 }  // namespace voxr

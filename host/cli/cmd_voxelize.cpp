@@ -22,6 +22,7 @@
 #include "cli/parse_args.h"
 #include "cli/prepared_runtime.h"
 #include "cli/process.h"
+#include "cli/progress_display.h"
 #include "core/default_scene.h"
 #include "core/mesh_loader.h"
 #include "core/mesh_topology.h"
@@ -31,8 +32,7 @@
 #include "io/volume_writer.h"
 #include "metrics/voxel_surface_error.h"
 #include "util/clock.h"
-#include "voxelize/sparse_voxelizer.h"
-#include "voxelize/voxelizer.h"
+#include "voxelize/voxelize_job.h"
 
 namespace voxr::cli {
 
@@ -57,6 +57,7 @@ struct VoxelizeArgs {
   bool profile = false;
   bool quiet = false;
   bool view = false;
+  bool progress = false;  // --progress
 };
 
 std::string lower_extension(const std::string& path) {
@@ -80,68 +81,8 @@ std::filesystem::path find_viewer(const std::string& output) {
 
 // Options from the flags, validated before any file is read.
 VoxelizeOptions voxelize_options(const VoxelizeArgs& args) {
-  VoxelizeOptions options;
-  options.method = parse_voxelize_method(args.method);
-  const MethodInfo& info = method_info(options.method);
-  if (!info.modes && !args.mode.empty())
-    fail("--mode does not apply to --method {} (it samples column centres)", info.name);
-  if (options.method != VoxelizeMethod::kSlicemap && !args.slicing.empty())
-    fail("--slicing applies to --method slicemap only");
-  options.slicing = parse_slicemap_slicing(args.slicing.empty() ? "uniform" : args.slicing);
-  options.mode = parse_raster_mode(args.mode.empty() ? "conservative" : args.mode);
-  options.channels = ChannelSet::parse(args.channels);
-  if (!args.solid.empty()) options.solid = parse_solid_mode(args.solid);
-  options.rows_per_copy = args.rows_per_copy;
-  options.validate();
-  return options;
-}
-
-// --memory-budget: bytes with an optional K, M, G or T suffix (powers of 1024).
-uint64_t parse_memory_budget(const std::string& text) {
-  size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    fail("--memory-budget '{}': expected a size such as 512M or 2G", text);
-  }
-  std::string suffix = text.substr(used);
-  for (char& c : suffix) c = char(std::toupper(static_cast<unsigned char>(c)));
-  if (!suffix.empty() && suffix.back() == 'B' && suffix.size() <= 3 && suffix != "B") suffix.pop_back();
-  if (suffix.size() == 2 && suffix[1] == 'I') suffix.pop_back();  // 2GiB, 2Gi
-  const std::string units = "KMGT";
-  double scale = 1.0;
-  if (!suffix.empty() && suffix != "B") {
-    const size_t at = units.find(suffix);
-    if (suffix.size() != 1 || at == std::string::npos)
-      fail("--memory-budget '{}': unknown unit '{}' (use K, M, G or T)", text, text.substr(used));
-    scale = std::ldexp(1.0, 10 * int(at + 1));
-  }
-  const double bytes = value * scale;
-  if (!(bytes >= double(1 << 20)) || bytes > 1e18) fail("--memory-budget '{}': give at least 1M", text);
-  return uint64_t(bytes);
-}
-
-// --layout auto: dense bits up to kDenseLimitBytes (small grids voxelize fastest dense: no coarse pass, and
-// the host writes straight into the result), bricks beyond, or when the dense bits exceed what the device
-// can allocate.
-constexpr uint64_t kDenseLimitBytes = uint64_t(512) << 20;
-
-bool choose_sparse(const std::string& layout, const GridSpec& grid, const VoxelizeOptions& options,
-                   const ClRuntime& cl) {
-  if (layout == "dense") return false;
-  if (layout == "sparse") {
-    SparseVoxelizer::validate(options);
-    return true;
-  }
-  const uint64_t dense = dense_occupancy_bytes(grid.dims);
-  if (dense <= kDenseLimitBytes && dense <= cl.device().max_allocation) return false;
-  try {
-    SparseVoxelizer::validate(options);
-  } catch (const Error&) {
-    return false;  // solid fill, slicemap, lists: dense, which says so itself if the grid does not fit
-  }
-  return true;
+  return make_voxelize_options(
+      {args.method, args.mode, args.slicing, args.channels, args.solid, args.rows_per_copy});
 }
 
 struct Phases {
@@ -153,68 +94,19 @@ struct Phases {
   double process_ms = 0.0;  // from the start of the command to the report
 };
 
+// The job's report with the process's phases added to its times.
 nlohmann::json make_report(const VoxelizeArgs& args, const ClRuntime& cl, const GridSpec& grid,
-                           const VoxelizeOptions& options, const VoxelizeStats& stats, const Phases& phases,
-                           const ChannelSet& channels, const std::optional<SparseStats>& sparse,
-                           uint64_t host_bytes) {
-  nlohmann::json stages = nlohmann::json::object();
-  for (const auto& [name, ms] : stats.stage_ms) stages[name] = ms;
-  nlohmann::json report = {
-      {"input", args.input.empty() ? "default scene" : args.input},
-      {"device", cl.device().label()},
-      {"driver", cl.device().driver_version},
-      {"method", method_info(options.method).name},
-      {"mode", options.method == VoxelizeMethod::kSlicemap ? "center" : raster_mode_name(options.mode)},
-      {"channels", channels.to_string()},
-      {"triangles", stats.triangles},
-      {"triangles_split", stats.triangles_split},
-      {"direct_triangles", stats.direct_triangles},
-      {"dims", {grid.dims.x, grid.dims.y, grid.dims.z}},
-      {"voxel_size", grid.voxel_size},
-      {"origin",
-       {grid.anchor.x + grid.origin.x, grid.anchor.y + grid.origin.y, grid.anchor.z + grid.origin.z}},
-      {"margin", stats.margin},
-      {"copies", stats.copies},
-      {"batches", stats.batches},
-      {"voxels_set", stats.voxels_set},
-      {"device_bytes", stats.device_bytes},
-      {"layout", sparse ? "sparse" : "dense"},
-      {"host_bytes", host_bytes},
-      {"ms",
-       {{"upload", stats.upload_ms},
-        {"kernels", stats.kernels_ms},
-        {"readback", stats.readback_ms},
-        {"total", stats.total_ms()},
-        {"wall", stats.wall_ms},
-        {"stages", stages},
-        {"load", phases.load_ms},
-        {"runtime", phases.runtime_ms},
-        {"programs", phases.programs_ms},
-        {"wait", phases.wait_ms},
-        {"write", phases.write_ms},
-        {"process", phases.process_ms}}},
-  };
-  if (sparse)
-    report["sparse"] = {
-        {"brick", kBrickEdge},
-        {"slabs", sparse->slabs},
-        {"bricks_marked", sparse->bricks_marked},
-        {"bricks", sparse->bricks_kept},
-        {"memory_budget", sparse->memory_budget},
-        {"peak_device_bytes", sparse->peak_device_bytes},
-        {"peak_grid_bytes", sparse->peak_grid_bytes},
-        {"grid_bytes_per_voxel",
-         stats.voxels_set ? double(sparse->peak_grid_bytes) / double(stats.voxels_set) : 0.0},
-        {"device_bytes_per_voxel",
-         stats.voxels_set ? double(sparse->peak_device_bytes) / double(stats.voxels_set) : 0.0},
-        {"host_bytes_per_voxel", stats.voxels_set ? double(host_bytes) / double(stats.voxels_set) : 0.0}};
-  if (options.method == VoxelizeMethod::kSlicemap) report["slicing"] = slicemap_slicing_name(options.slicing);
-  if (options.solid)
-    report["solid"] = {{"mode", solid_mode_name(*options.solid)},
-                       {"inside_voxels", stats.inside_voxels},
-                       {"questionable_columns", stats.questionable_columns},
-                       {"repair_iterations", stats.repair_iterations},
-                       {"flood_iterations", stats.flood_iterations}};
+                           const VoxelizeOptions& options, const VoxelizeResult& result,
+                           const Phases& phases) {
+  nlohmann::json report =
+      voxelize_report(args.input.empty() ? "default scene" : args.input, cl, grid, options, result);
+  nlohmann::json& ms = report["ms"];
+  ms["load"] = phases.load_ms;
+  ms["runtime"] = phases.runtime_ms;
+  ms["programs"] = phases.programs_ms;
+  ms["wait"] = phases.wait_ms;
+  ms["write"] = phases.write_ms;
+  ms["process"] = phases.process_ms;
   return report;
 }
 
@@ -228,7 +120,8 @@ constexpr uint32_t kTargetSamples = 50000;  // surface points and set voxels per
 // voxelized and measured in full on the host.
 ResolutionChoice search_surface_resolution(Voxelizer& voxelizer, const TriangleSoup& soup,
                                            const Bounds& bounds, const GridRequest& request,
-                                           const VoxelizeOptions& options, double target, bool tty) {
+                                           const VoxelizeOptions& options, double target,
+                                           const ProgressDisplay& progress) {
   VoxelizeOptions probe = options;
   probe.solid.reset();
   probe.channels = ChannelSet::parse("occ");
@@ -241,7 +134,7 @@ ResolutionChoice search_surface_resolution(Voxelizer& voxelizer, const TriangleS
     const double e =
         voxel_surface_error(voxelizer.run(soup, g, probe, nullptr, &bounds), g, soup, kTargetSamples)
             .chamfer();
-    if (tty) fmt::print(stderr, "\rerror target: res {} -> {:.5f}{:<20}", r, e, "");
+    progress.show(fmt::format("error target: res {} -> {:.5f}", r, e));
     return e;
   });
 }
@@ -254,14 +147,16 @@ int run_voxelize(const VoxelizeArgs& args) {
   if (!args.report.empty()) check_output_path(args.report);
   if (args.layout != "auto" && args.layout != "dense" && args.layout != "sparse")
     fail("--layout '{}': expected auto, dense or sparse", args.layout);
-  const uint64_t memory_budget = args.memory_budget.empty() ? 0 : parse_memory_budget(args.memory_budget);
+  const GridLayout layout = parse_grid_layout(args.layout);
+  const uint64_t memory_budget =
+      args.memory_budget.empty() ? 0 : parse_memory_size(args.memory_budget, "--memory-budget");
   if (args.layout == "sparse" && args.error_target)
     fail("--error-target searches dense grids: leave out --layout sparse");
   const std::filesystem::path viewer = args.view ? find_viewer(args.output) : std::filesystem::path();
   VoxelizeOptions options = voxelize_options(args);
-  const bool tty = isatty(fileno(stderr)) && !args.quiet;
-  if (tty)
-    options.progress = [](const std::string& stage) { fmt::print(stderr, "\rvoxelizing: {:<12}", stage); };
+  const ProgressDisplay progress(args.progress, args.quiet);
+  if (progress.active())
+    options.progress = [&progress](const std::string& stage) { progress.show("voxelizing: " + stage); };
 
   // A missing or unreadable input fails at once, not after the device and programs are ready (the
   // background thread is joined before any error leaves this function).
@@ -275,57 +170,21 @@ int run_voxelize(const VoxelizeArgs& args) {
   auto background = prepare_in_background<Voxelizer>(args.device, options);
   Phases phases;
   auto load_start = Clock::now();
-  if (tty) fmt::print(stderr, "\rreading {}...", args.input.empty() ? "the default scene" : args.input);
-  Scene scene = args.input.empty() ? default_scene() : load_input(args.input);
-  const char* cr = tty ? "\r" : "";
-  for (const MeshInstance& m : scene.meshes)
-    for (const std::string& w : m.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
-  for (const std::string& w : scene.warnings) fmt::print(stderr, "{}voxr: warning: {}\n", cr, w);
-  TriangleSoup soup = take_scene_triangles(scene);
-  const size_t degenerate = validate_soup(soup, scene.source);
-  if (options.channels.has(Channel::kColor) && soup.colors.empty())
-    fmt::print(stderr, "{}voxr: warning: {} has no colours; the color channel is white\n", cr, scene.source);
-  const Bounds bounds = soup.bounds();
-
-  GridRequest request = scene.grid;
-  if (args.res) {
-    request.resolution = args.res;
-    request.dims.reset();
-  }
-  if (!args.dims.empty()) request.dims = parse_dims(args.dims, "--dims");
-  if (!args.bounds.empty()) request.bounds = parse_bounds(args.bounds, "--bounds");
+  progress.show(fmt::format("reading {}...", args.input.empty() ? "the default scene" : args.input));
+  VoxelizeInput input =
+      prepare_voxelize_input(args.input.empty() ? default_scene() : load_input(args.input), options);
+  for (const std::string& w : input.warnings)
+    fmt::print(stderr, "{}voxr: warning: {}\n", progress.line_start(), w);
+  GridChoice choice_of_grid{args.res, std::nullopt, std::nullopt};
+  if (!args.dims.empty()) choice_of_grid.dims = parse_dims(args.dims, "--dims");
+  if (!args.bounds.empty()) choice_of_grid.bounds = parse_bounds(args.bounds, "--bounds");
+  GridRequest request = choose_grid_request(input.request, choice_of_grid);
   if (args.error_target) request.dims.reset();  // a scene's "grid" dims give way to the search
   fit_request_to_format(request, args.output);
-  GridSpec grid = fit_grid(bounds, request, soup.anchor);
+  GridSpec grid = fit_grid(input.bounds, request, input.soup.anchor);
   // With --error-target the grid is known after the search: folder and format are checked now, the size the
   // format holds after it.
   if (!args.output.empty()) check_volume_output(args.output, args.error_target ? glm::uvec3(1) : grid.dims);
-
-  bool refit = false;
-  if (options.solid) {
-    // Closure is judged on welded positions; a triangle listed twice would flip every column parity
-    // through it, and the winding-number definition of inside ignores the copy, so copies go.
-    MeshTopology topology = mesh_topology(soup);
-    if (topology.duplicates > 0) {
-      drop_duplicate_triangles(soup);
-      fmt::print(
-          stderr,
-          "{}voxr: warning: {}: {} triangles repeat an earlier triangle exactly (first: triangle {}); the "
-          "copies were dropped\n",
-          cr, scene.source, topology.duplicates, topology.first_duplicate);
-    }
-    if (!topology.closed() && (options.solid == SolidMode::kParity || options.solid == SolidMode::kXor)) {
-      // Column parity needs a closed surface. Late filling repairs the columns that cross a hole from their
-      // neighbours: on the holed test meshes it stays within a few voxels of the winding-number reference,
-      // where flood fill loses the interior once a hole is wider than a voxel (bench/results/solid-*).
-      fmt::print(stderr,
-                 "{}voxr: warning: {} is not closed ({}); --solid {} would leak through the holes, "
-                 "using --solid late\n",
-                 cr, scene.source, topology.describe(soup.anchor), args.solid);
-      options.solid = SolidMode::kLate;
-      refit = true;
-    }
-  }
   phases.load_ms = ms_since(load_start);
 
   const auto wait_start = Clock::now();
@@ -335,39 +194,25 @@ int run_voxelize(const VoxelizeArgs& args) {
   phases.programs_ms = prepared.programs_ms;
   ClRuntime& cl = *prepared.cl;
   Voxelizer& voxelizer = *prepared.engine;
-  if (refit) voxelizer.prepare(options);
+  if (input.solid_switched) voxelizer.prepare(options);
 
   std::optional<ResolutionChoice> choice;
   const auto search_start = Clock::now();
   if (args.error_target) {
-    choice = search_surface_resolution(voxelizer, soup, bounds, request, options, *args.error_target, tty);
+    choice = search_surface_resolution(voxelizer, input.soup, input.bounds, request, options,
+                                       *args.error_target, progress);
     request.resolution = choice->resolution;
     request.dims.reset();
     fit_request_to_format(request, args.output);
-    grid = fit_grid(bounds, request, soup.anchor);
+    grid = fit_grid(input.bounds, request, input.soup.anchor);
     if (!args.output.empty()) check_volume_output(args.output, grid.dims);
   }
   const double search_ms = args.error_target ? ms_since(search_start) : 0.0;
 
-  VoxelizeStats stats;
-  const bool sparse_layout = choose_sparse(args.layout, grid, options, cl);
-  std::optional<SparseStats> sparse_stats;
-  SparseVoxelGrid sparse_result;
-  VoxelGrid result;
-  if (sparse_layout) {
-    SparseVoxelizer sparse(cl);
-    sparse_stats.emplace();
-    sparse_result = sparse.run(soup, grid, options, memory_budget, &stats, &*sparse_stats, &bounds);
-  } else {
-    result = voxelizer.run(soup, grid, options, &stats, &bounds);
-  }
-  const ChannelSet result_channels = sparse_layout ? sparse_result.channels : result.channels;
-  const uint64_t host_bytes = sparse_layout ? sparse_result.memory_bytes() : result.memory_bytes();
-  if (!sparse_layout && memory_budget)
-    fmt::print(
-        stderr,
-        "voxr: warning: --memory-budget applies to the sparse layout; the {} x {} x {} grid ran dense\n",
-        grid.dims.x, grid.dims.y, grid.dims.z);
+  std::unique_ptr<SparseVoxelizer> bricks;
+  const VoxelizeResult result = run_voxelize_job(cl, voxelizer, bricks, input, grid, options, layout,
+                                                 memory_budget, !args.bounds.empty());
+  const VoxelizeStats& stats = result.stats;
   // The saving is measured: the same job on the fixed grid it replaces.
   VoxelizeStats fixed;
   GridSpec fixed_grid;
@@ -376,26 +221,23 @@ int run_voxelize(const VoxelizeArgs& args) {
     q.resolution = kTargetCompare;
     q.dims.reset();
     fit_request_to_format(q, args.output);
-    fixed_grid = fit_grid(bounds, q, soup.anchor);
-    voxelizer.run(soup, fixed_grid, options, &fixed, &bounds);
+    fixed_grid = fit_grid(input.bounds, q, input.soup.anchor);
+    voxelizer.run(input.soup, fixed_grid, options, &fixed, &input.bounds);
   }
-  if (tty) fmt::print(stderr, "\r{:<40}\r", "");
-  // An empty volume is written (it is the right answer for a grid beside the mesh), never silently.
-  if (stats.voxels_set == 0 && stats.inside_voxels == 0)
-    fmt::print(stderr, "voxr: warning: no voxel of the {} x {} x {} grid touches {}{}\n", grid.dims.x,
-               grid.dims.y, grid.dims.z, scene.source, args.bounds.empty() ? "" : " (check --bounds)");
+  progress.clear();
+  for (const std::string& w : result.warnings) fmt::print(stderr, "voxr: warning: {}\n", w);
 
   std::vector<std::filesystem::path> written;
   if (!args.output.empty()) {
     const auto write_start = Clock::now();
-    if (tty) fmt::print(stderr, "writing {}...", args.output);
-    written = sparse_layout ? write_volume(sparse_result, args.output) : write_volume(result, args.output);
-    if (tty) fmt::print(stderr, "\r{:<60}\r", "");
+    progress.show(fmt::format("writing {}...", args.output));
+    written =
+        result.sparse ? write_volume(result.bricks, args.output) : write_volume(result.dense, args.output);
+    progress.clear();
     phases.write_ms = ms_since(write_start);
   }
   phases.process_ms = ms_since(process_start);
-  nlohmann::json report =
-      make_report(args, cl, grid, options, stats, phases, result_channels, sparse_stats, host_bytes);
+  nlohmann::json report = make_report(args, cl, grid, options, result, phases);
   if (choice) {
     nlohmann::json trials = nlohmann::json::array();
     for (const ResolutionTrial& t : choice->trials)
@@ -418,9 +260,10 @@ int run_voxelize(const VoxelizeArgs& args) {
     write_file_atomically(args.report, report.dump(2) + "\n");
   }
   if (!args.quiet) {
-    fmt::print("input      {}\n", scene.source);
+    fmt::print("input      {}\n", input.source);
     fmt::print("device     {}\n", cl.device().label());
-    fmt::print("triangles  {} ({} degenerate, {} split", stats.triangles, degenerate, stats.triangles_split);
+    fmt::print("triangles  {} ({} degenerate, {} split", stats.triangles, input.degenerate,
+               stats.triangles_split);
     if (options.method == VoxelizeMethod::kHybrid)
       fmt::print(", {} direct, {} by slice duplication", stats.direct_triangles,
                  stats.triangles - stats.direct_triangles);
@@ -432,7 +275,7 @@ int run_voxelize(const VoxelizeArgs& args) {
     fmt::print("grid       {} x {} x {}, voxel {:.6g}, {}{}, channels {}\n", grid.dims.x, grid.dims.y,
                grid.dims.z, grid.voxel_size, rule,
                options.solid ? fmt::format(", solid {}", solid_mode_name(*options.solid)) : "",
-               result_channels.to_string());
+               result.channels().to_string());
     fmt::print("copies     {} in {} batch(es), {} raster work items\n", stats.copies, stats.batches,
                stats.work_items);
     fmt::print("voxels set {} ({:.3f}% of {})\n", stats.voxels_set,
@@ -440,7 +283,7 @@ int run_voxelize(const VoxelizeArgs& args) {
     if (options.solid)
       fmt::print("inside     {} voxels ({} questionable columns, {} flood rounds)\n", stats.inside_voxels,
                  stats.questionable_columns, stats.flood_iterations);
-    if (sparse_stats)
+    if (const std::optional<SparseStats>& sparse_stats = result.sparse_stats)
       fmt::print(
           "layout     sparse: {} bricks of 8^3 ({} marked), {} slab(s) under a {:.0f} MiB budget; on the "
           "device at "
@@ -451,8 +294,8 @@ int run_voxelize(const VoxelizeArgs& args) {
           double(sparse_stats->memory_budget) / (1 << 20), double(stats.device_bytes) / (1 << 20),
           double(sparse_stats->peak_grid_bytes) / (1 << 20),
           double(sparse_stats->peak_grid_bytes) / double(std::max<uint64_t>(stats.voxels_set, 1)),
-          double(host_bytes) / (1 << 20),
-          double(host_bytes) / double(std::max<uint64_t>(stats.voxels_set, 1)));
+          double(result.host_bytes()) / (1 << 20),
+          double(result.host_bytes()) / double(std::max<uint64_t>(stats.voxels_set, 1)));
     else
       fmt::print("memory     {:.1f} MiB on the device (dense layout)\n",
                  double(stats.device_bytes) / (1 << 20));
@@ -540,6 +383,9 @@ Command add_voxelize(CLI::App& app) {
   sub->add_option("--rows-per-copy", args->rows_per_copy, "rows one raster work item walks (tuning)")
       ->check(CLI::Range(1u, 4096u))
       ->capture_default_str();
+  sub->add_flag("--progress", args->progress,
+                "show each step on stderr even with -q or when stderr is not a terminal (one line per step, "
+                "with the seconds since the start)");
   sub->add_flag("--view", args->view, "open the written volume (.vti, .nrrd, .vdb) in voxr-view");
   return {sub, [args] { return run_voxelize(*args); }};
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 
 #include "mesh/assimp_reader.h"
 #include "mesh/file_bytes.h"
@@ -114,6 +115,32 @@ TriangleSoup load_mesh(const std::filesystem::path& file, std::vector<std::strin
     for (std::string& w : report.warnings(name)) warnings->push_back(std::move(w));
   }
   return soup;
+}
+
+TriangleSoup soup_from_arrays(std::span<const double> positions, std::span<const uint32_t> triangles,
+                              std::span<const uint32_t> materials, const std::string& name) {
+  if (positions.size() % 3) fail("{}: {} position values are not x, y, z triples", name, positions.size());
+  if (triangles.size() % 3) fail("{}: {} triangle indices are not triples", name, triangles.size());
+  if (triangles.empty()) fail("{}: no triangles", name);
+  const size_t vertices = positions.size() / 3, count = triangles.size() / 3;
+  if (!materials.empty() && materials.size() != count)
+    fail("{}: {} material ids for {} triangles", name, materials.size(), count);
+  PolygonMesh mesh;
+  mesh.positions.resize(vertices);
+  for (size_t v = 0; v < vertices; ++v) {
+    const glm::dvec3 p(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      fail("{}: vertex {} is not finite ({}, {}, {})", name, v, p.x, p.y, p.z);
+    mesh.positions[v] = p;
+  }
+  for (size_t i = 0; i < triangles.size(); ++i)
+    if (triangles[i] >= vertices)
+      fail("{}: triangle {} uses vertex {}, but there are {} vertices", name, i / 3, triangles[i], vertices);
+  mesh.indices.assign(triangles.begin(), triangles.end());
+  mesh.face_sizes.assign(count, 3u);
+  mesh.materials.assign(materials.begin(), materials.end());
+  TriangulationReport report;
+  return to_soup(mesh, report);
 }
 
 }  // namespace voxr

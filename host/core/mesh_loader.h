@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -29,5 +30,13 @@ std::string mesh_extensions();
 // refers to vertices it does not have, holds no triangles or has a vertex that is NaN or infinite.
 // Safe to call from several threads.
 TriangleSoup load_mesh(const std::filesystem::path& file, std::vector<std::string>* warnings = nullptr);
+
+// The soup of a triangle mesh the caller holds in memory, made exactly as load_mesh makes one from a file
+// with the same numbers (same anchor, same float positions): positions is vertex_count x 3 doubles (x, y, z),
+// triangles is triangle_count x 3 vertex indices, materials is empty or one id per triangle. Throws
+// voxr::Error starting with `name` when a size is not a multiple of 3 (or materials' is not the triangle
+// count), there are no triangles, an index is out of range, or a position is NaN or infinite.
+TriangleSoup soup_from_arrays(std::span<const double> positions, std::span<const uint32_t> triangles,
+                              std::span<const uint32_t> materials, const std::string& name);
 
 }  // namespace voxr

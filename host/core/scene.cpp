@@ -509,12 +509,26 @@ Scene load_input(const std::filesystem::path& input) {
   std::string ext = input.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (ext == ".json") return load_scene(input);
+  std::vector<std::string> warnings;
+  TriangleSoup soup = load_mesh(input, &warnings);
+  return scene_from_mesh(std::move(soup), input.string(), std::move(warnings));
+}
+
+Scene scene_from_mesh(TriangleSoup soup, const std::string& source, std::vector<std::string> warnings) {
   Scene scene;
-  scene.source = input.string();
+  scene.source = source;
+  // The mesh keeps its own material ids (OBJ usemtl, glTF materials: the voxels' material channel), each an
+  // opaque scene material of its own so that every id names one.
+  uint32_t largest = 0;
+  for (const glm::uvec4& t : soup.triangles) largest = std::max(largest, t.w);
   scene.materials.push_back(Material{"default", MaterialKind::kOpaque});
+  for (uint32_t id = 1; id <= largest; ++id)
+    scene.materials.push_back(Material{fmt::format("material{}", id), MaterialKind::kOpaque});
   MeshInstance mesh;
-  mesh.source = input.string();
-  mesh.soup = load_mesh(input, &mesh.warnings);
+  mesh.source = source;
+  mesh.material = TriangleSoup::kKeepMaterial;
+  mesh.soup = std::move(soup);
+  mesh.warnings = std::move(warnings);
   scene.meshes.push_back(std::move(mesh));
   apply_defaults(scene, false, false, false);
   return scene;

@@ -93,6 +93,9 @@ Scene parse_scene(std::string_view json_text, const std::string& label,
 // `.json` -> load_scene. Any other extension: the mesh file as a scene with one opaque material
 // "default", identity transform and default light, camera and environment framing the mesh.
 Scene load_input(const std::filesystem::path& input);
+// The scene load_input makes of a mesh file, for a soup read elsewhere (the public API's arrays): `source`
+// names the scene and its mesh, `warnings` are the mesh's.
+Scene scene_from_mesh(TriangleSoup soup, const std::string& source, std::vector<std::string> warnings = {});
 
 // Every mesh in world space with its material ids, in scene order; positions relative to an anchor chosen
 // for the whole scene (choose_anchor).

@@ -52,16 +52,17 @@ struct MeshView {
 
 // What `voxr voxelize` takes as flags, with the same defaults and names (docs/cli.md).
 struct VoxelizeSettings {
-  uint32_t resolution = 256;                      // --res: voxels along the bounds' longest side
-  std::optional<std::array<uint32_t, 3>> dims;    // --dims: exact dimensions instead of resolution
-  std::optional<std::array<double, 6>> bounds;    // --bounds x0,y0,z0,x1,y1,z1 (world), used exactly
-  std::string method = "hybrid";                  // hybrid, slice, grid, slicemap
-  std::string mode = "conservative";              // conservative or center
-  std::string channels = "occ";                   // comma list of occ,count,normal,material,color
-  std::string solid;                              // empty, xor, late, parity or flood (adds `inside`)
-  std::string layout = "auto";                    // auto, dense or sparse
-  uint64_t memory_budget = 0;                     // bytes a sparse run may use on the device; 0: default
-  std::string device;                             // "P:D", "P", a name substring; empty: $VOXR_DEVICE or default
+  uint32_t resolution = 0;  // --res: voxels along the bounds' longest side; 0: the scene's grid (default 256)
+  std::optional<std::array<uint32_t, 3>> dims;  // --dims: exact dimensions instead of resolution
+  std::optional<std::array<double, 6>> bounds;  // --bounds x0,y0,z0,x1,y1,z1 (world), used exactly
+  std::string method = "hybrid";                // hybrid, slice, grid, slicemap
+  std::string mode;                             // conservative (empty: the default) or center
+  std::string slicing;                          // slicemap only: uniform (empty: the default) or local
+  std::string channels = "occ";                 // comma list of occ,count,normal,material,color
+  std::string solid;                            // empty, xor, late, parity or flood (adds `inside`)
+  std::string layout = "auto";                  // auto, dense or sparse
+  std::string memory_budget;                    // a sparse run's device memory, "512M", "4G"; empty: default
+  std::string device;  // "P:D", "P", a name substring; empty: $VOXR_DEVICE or default
 };
 
 // Timings and counts of one voxelization (the `ms` and count fields of the CLI's --report).
@@ -73,7 +74,7 @@ struct VoxelizeReport {
   double upload_ms = 0, kernels_ms = 0, readback_ms = 0, wall_ms = 0;
   std::string layout;                 // "dense" or "sparse"
   std::vector<std::string> warnings;  // what the CLI prints as "voxr: warning: ..."
-  std::string json;                   // the same object as `voxr voxelize --report`, for the fields above and more
+  std::string json;  // the same object as `voxr voxelize --report`, for the fields above and more
 };
 
 // A voxelization result. Occupancy covers the grid; the attribute channels hold one entry per set voxel, in
@@ -85,10 +86,10 @@ class VOXR_API VoxelVolume {
   explicit VoxelVolume(std::shared_ptr<const Impl> impl);
 
   std::array<uint32_t, 3> dims() const;
-  double voxel_size() const;                     // world units
+  double voxel_size() const;                      // world units
   std::array<double, 16> index_to_world() const;  // column-major 4x4: grid units (i, j, k, 1) -> world
   std::string channels() const;                   // e.g. "occ,count,normal" (+ "inside" with a solid)
-  bool sparse() const;                            // built in 8^3 bricks (layout sparse or auto on a large grid)
+  bool sparse() const;  // built in 8^3 bricks (layout sparse or auto on a large grid)
   uint64_t voxels_set() const;
   uint64_t inside_voxels() const;
   const VoxelizeReport& report() const;
