@@ -4,13 +4,15 @@
 Dataset (generated in a temporary folder, seed fixed): N meshes (200) as binary little-endian .ply — half
 copies of the meshes in data/meshes (bunny.obj 69 666 triangles, armadillo 52 000, ChineseDragon 19 994,
 bunny00 75 408, mech-holes-shark 10 192, refined_elephant 88 928; those present), the other half UV spheres
-(2 000–18 000 triangles) and tori (4 000–24 000), every one randomly rotated, scaled (0.2–5×) and moved.
-Each is voxelized at --res (128) with the default options and saved as .nrrd.
+(3 480–22 200 triangles) and tori (10 404–48 400), every one randomly rotated, scaled (0.2–5×) and moved.
+Each is voxelized at --res (128: 10–40 ms a mesh warm on PoCL, 2 cores) with the default options and saved
+as .nrrd (occupancy only).
 
 Runs: a warm-up of both (the single process's Context and each worker's), then --runs (3) timed runs of
 each, interleaved (single, dask, dask, single, ...), each into a fresh output folder. Throughput = meshes /
 wall seconds of the call; reported as median (min–max). Also the per-mesh split from the manifests: load
-(voxr's ms.load), device (ms.wall: mesh in memory to grid on the host), save, and the Python call's total.
+(the voxelize_file call minus voxr's ms.wall: reading, checks, grid fit), device (ms.wall: mesh in memory to
+grid on the host), save, and the per-mesh total.
 
     POCL_CACHE_DIR=$PWD/build/pocl-cache python bench/dask_bench.py --res 128 --md bench/results/issue22-dask-2core.md
 """
@@ -119,12 +121,27 @@ def split(manifest):
         return statistics.median(values) if values else float("nan")
 
     return {
-        "load": med([r.get("load") for r in rep]),
+        # The API's report has no ms.load: load (+ checks, grid fit) = the call's time - voxr's ms.wall.
+        "load": med([e["ms"]["voxelize"] - r["wall"] if "wall" in r else None for e, r in zip(good, rep)]),
         "device": med([r.get("wall") for r in rep]),
         "save": med([e["ms"]["save"] for e in good]),
         "total": med([e["ms"]["voxelize"] + e["ms"]["save"] for e in good]),
         "errors": len(manifest) - len(good),
     }
+
+
+def _own_cpu():
+    import resource
+
+    r = resource.getrusage(resource.RUSAGE_SELF)
+    return r.ru_utime + r.ru_stime
+
+
+def cpu_seconds(client):
+    """CPU seconds used so far by this process (client and the LocalCluster's scheduler, all threads,
+    PoCL's included) and by every worker process: a cost per mesh that does not depend on how busy the
+    machine is."""
+    return _own_cpu() + sum(client.run(_own_cpu).values())
 
 
 def sh(cmd):
@@ -144,7 +161,7 @@ def main():
     ap.add_argument("--device", default=None)
     ap.add_argument("--pocl-threads", type=int, default=0,
                     help="POCL_MAX_PTHREAD_COUNT for the workers only (0: PoCL's default, all cores)")
-    ap.add_argument("--chunk-size", type=int, default=1)
+    ap.add_argument("--chunk-size", type=int, default=None, help="meshes per task (default: voxr.dask's choice)")
     ap.add_argument("--md", help="append the results as Markdown to this file")
     ap.add_argument("--keep", action="store_true", help="keep the temporary folder")
     args = ap.parse_args()
@@ -193,6 +210,7 @@ def main():
         order = names if run % 2 == 0 else names[::-1]
         for name in order:
             out = tmp / f"out-{run}-{name[:4]}"
+            c0 = cpu_seconds(client)
             t0 = time.perf_counter()
             if name == "one process":
                 m = batch.voxelize_files(paths, out, format=args.format, progress=False, **opts)
@@ -200,10 +218,11 @@ def main():
                 m = voxr.dask.voxelize_files(paths, out, client, format=args.format, progress=False,
                                              chunk_size=args.chunk_size, **opts)
             s = time.perf_counter() - t0
+            cpu = cpu_seconds(client) - c0
             results[name].append(len(paths) / s)
-            splits[name].append(split(m))
-            print(f"run {run + 1} {name}: {s:.2f} s, {len(paths) / s:.2f} meshes/s, split {splits[name][-1]}",
-                  flush=True)
+            splits[name].append(dict(split(m), cpu=1e3 * cpu / len(paths), cores=cpu / s))
+            print(f"run {run + 1} {name}: {s:.2f} s, {len(paths) / s:.2f} meshes/s, split "
+                  + ", ".join(f"{k} {v:.1f}" for k, v in splits[name][-1].items()), flush=True)
             shutil.rmtree(out)
     load_after = sh("uptime")
     client.close()
@@ -214,13 +233,16 @@ def main():
 
     base = statistics.median(results["one process"])
     lines = [
-        f"| mode | meshes/s median (min–max) | speed-up | load ms | device ms | save ms | per mesh ms |",
-        "|---|---|---|---|---|---|---|",
+        "| mode | meshes/s median (min–max) | speed-up | load ms | device ms | save ms | per mesh ms "
+        "| CPU ms per mesh | cores used |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
     for name in names:
-        sp = {k: statistics.median(s[k] for s in splits[name]) for k in ("load", "device", "save", "total")}
+        sp = {k: statistics.median(s[k] for s in splits[name])
+              for k in ("load", "device", "save", "total", "cpu", "cores")}
         lines.append(f"| {name} | {cell(results[name])} | {statistics.median(results[name]) / base:.2f}× | "
-                     f"{sp['load']:.1f} | {sp['device']:.1f} | {sp['save']:.1f} | {sp['total']:.1f} |")
+                     f"{sp['load']:.1f} | {sp['device']:.1f} | {sp['save']:.1f} | {sp['total']:.1f} | "
+                     f"{sp['cpu']:.1f} | {sp['cores']:.2f} |")
     table = "\n".join(lines)
     print(table)
     if args.md:
@@ -230,14 +252,16 @@ def main():
         text = [
             f"\n## {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}: {args.n} meshes at res {args.res}, "
             f"{args.workers} workers{f', POCL_MAX_PTHREAD_COUNT={args.pocl_threads} per worker' if args.pocl_threads else ''}"
-            f"{f', chunk_size {args.chunk_size}' if args.chunk_size != 1 else ''}\n",
+            f"{f', chunk_size {args.chunk_size}' if args.chunk_size else ', chunk_size auto'}\n",
             f"- command: `{'POCL_CACHE_DIR=build/pocl-cache ' if 'POCL_CACHE_DIR' in os.environ else ''}{cmd}`",
             f"- CPU: {cpu}; Python {platform.python_version()}; device: {dev.get('name', '?')} ({dev.get('platform', '?')})",
             f"- load before: `{load_before}`; after: `{load_after}`",
             f"- dataset: {mix}; {sum(tris)} triangles in all, median {tris[len(tris) // 2]} per mesh; "
             f"format .{args.format}; cluster start {start_s:.1f} s (not timed)",
-            f"- {args.runs} runs of each, interleaved; load/device/save/per mesh: medians over meshes (voxr's "
-            "ms.load, ms.wall, the Python save, the call's voxelize+save), median over runs\n",
+            f"- {args.runs} runs of each, interleaved; load/device/save/per mesh: medians over meshes (load: "
+            "the voxelize_file call minus voxr's ms.wall; device: ms.wall, mesh in memory to grid on the host; save; "
+            "per mesh: voxelize_file + save), median over runs; CPU ms per mesh: user+sys of this process and "
+            "of the workers over the call / meshes; cores used: CPU seconds / wall seconds, \n",
             table,
             "",
         ]

@@ -95,18 +95,19 @@ def voxelize_files(
     format: str = "nrrd",
     progress: bool = True,
     names: Optional[Sequence[str]] = None,
-    chunk_size: int = 1,
+    chunk_size: Optional[int] = None,
     **options: Any,
 ) -> List[Dict[str, Any]]:
     """voxr.voxelize_files over a Dask cluster: the same outputs and manifest, plus "worker" (host:pid).
 
     client: a distributed.Client; None uses the current default client (the last Client made in this
     process), and when there is none starts a LocalCluster of os.cpu_count() worker processes with one
-    thread each, closed before returning. out_dir must be reachable by every worker at the same path (a
-    shared filesystem on a real cluster), as must the inputs. chunk_size: meshes per task (1: one task per
-    mesh; more saves scheduler overhead on very small meshes). options: voxr.voxelize_file's keywords, with
-    device= naming the device on every worker (default: each worker's $VOXR_DEVICE, else its first GPU,
-    else its first CPU).
+    thread each (and POCL_MAX_PTHREAD_COUNT=1 unless set), closed before returning. out_dir must be
+    reachable by every worker at the same path (a shared filesystem on a real cluster), as must the inputs.
+    chunk_size: meshes per task; None: about 8 tasks per worker thread, at most 16 meshes a task (a task
+    costs the cluster ~5-8 ms of CPU, as much as a small mesh: bench/results/issue22-dask-2core.md); 1: one
+    task per mesh. options: voxr.voxelize_file's keywords, with device= naming the device on every worker
+    (default: each worker's $VOXR_DEVICE, else its first GPU, else its first CPU).
 
     Each worker voxelizes with one Context per device, created on its first task and kept for the worker's
     life. Errors per mesh as in voxr.voxelize_files: voxr's message in "error"; a task that fails another way
@@ -116,9 +117,8 @@ def voxelize_files(
     """
     plan = plan_outputs(paths, out_dir, format, names)
     os.makedirs(out_dir, exist_ok=True)
-    if chunk_size < 1:
+    if chunk_size is not None and chunk_size < 1:
         raise ValueError("chunk_size must be >= 1")
-    chunks = [plan[i : i + chunk_size] for i in range(0, len(plan), chunk_size)]
 
     token = uuid.uuid4().hex  # task keys unique to this call
     own_cluster = None
@@ -126,11 +126,18 @@ def voxelize_files(
         try:
             client = distributed.default_client()
         except ValueError:
+            # One PoCL thread per worker unless the caller chose (a CPU device: n workers x all cores
+            # each oversubscribe the machine; no effect on GPUs).
+            env = {} if "POCL_MAX_PTHREAD_COUNT" in os.environ else {"POCL_MAX_PTHREAD_COUNT": "1"}
             own_cluster = distributed.LocalCluster(
-                n_workers=os.cpu_count() or 1, threads_per_worker=1, processes=True
+                n_workers=os.cpu_count() or 1, threads_per_worker=1, processes=True, env=env
             )
             client = distributed.Client(own_cluster)
     try:
+        if chunk_size is None:
+            threads = sum(client.nthreads().values()) or 1
+            chunk_size = max(1, min(16, len(plan) // (8 * threads)))
+        chunks = [plan[i : i + chunk_size] for i in range(0, len(plan), chunk_size)]
         futures = client.map(
             _run_chunk,
             [[list(pair) for pair in c] for c in chunks],
