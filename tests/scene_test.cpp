@@ -317,8 +317,18 @@ TEST(Scene, LoadInputWrapsAMeshFile) {
   EXPECT_EQ(s.materials[0].name, "default");
   ASSERT_EQ(s.meshes.size(), 1u);
   EXPECT_EQ(s.meshes[0].transform, glm::mat4(1.0f));
-  EXPECT_EQ(s.meshes[0].material, 0u);
+  // The mesh keeps its own material ids; each names a scene material (one here: the file has none).
+  EXPECT_EQ(s.meshes[0].material, TriangleSoup::kKeepMaterial);
   EXPECT_EQ(scene_triangles(s).triangle_count(), 1u);
+  const Scene two = load_input(dir.write("two.obj",
+                                         "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nusemtl a\nf 1 2 3\n"
+                                         "usemtl b\nf 1 2 4\n"));
+  ASSERT_EQ(two.materials.size(), 2u);
+  EXPECT_EQ(two.materials[1].kind, MaterialKind::kOpaque);
+  const TriangleSoup soup = scene_triangles(two);
+  ASSERT_EQ(soup.triangle_count(), 2u);
+  EXPECT_EQ(soup.triangles[0].w, 0u);
+  EXPECT_EQ(soup.triangles[1].w, 1u);
   expect_near(s.camera.look_at, glm::vec3(0.5f, 0.5f, 0.0f));
   // .json goes to the scene loader.
   const fs::path scene = dir.write("s.json", R"({"meshes": [{"file": "tri.obj", "subdivide": 2}]})");

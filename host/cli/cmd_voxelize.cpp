@@ -17,10 +17,10 @@
 #include <optional>
 
 #include "cl/cl_runtime.h"
+#include "cl/prepared_runtime.h"
 #include "cli/commands.h"
 #include "cli/option_groups.h"
 #include "cli/parse_args.h"
-#include "cli/prepared_runtime.h"
 #include "cli/process.h"
 #include "cli/progress_display.h"
 #include "core/default_scene.h"

@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <mutex>
+#include <vector>
 
 #include "util/error.h"
 
@@ -13,9 +14,23 @@ namespace fs = std::filesystem;
 
 fs::path openvdb_module_path() {
   if (const char* env = std::getenv("VOXR_OPENVDB_PLUGIN")) return fs::path(env);
+  constexpr const char* kName = "libvoxr_openvdb_peer.so";
+  // Beside the executable (the build tree, an installed bin/); else beside the library this code is linked
+  // into when that is not the executable: libvoxr.so in lib/ (the plugin in ../bin) or in the Python package
+  // (the plugin in bin/ beside it).
+  std::vector<fs::path> candidates;
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? fs::path() : exe.parent_path() / "libvoxr_openvdb_peer.so";
+  if (!ec) candidates.push_back(exe.parent_path() / kName);
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&openvdb_module_path), &info) && info.dli_fname) {
+    const fs::path lib = fs::absolute(info.dli_fname, ec).parent_path();
+    for (const fs::path& dir : {lib, lib / "bin", lib.parent_path() / "bin"})
+      candidates.push_back(dir / kName);
+  }
+  for (const fs::path& c : candidates)
+    if (fs::is_regular_file(c, ec)) return c;
+  return candidates.empty() ? fs::path() : candidates.front();
 }
 
 bool openvdb_module_available() {

@@ -8,7 +8,9 @@
 namespace voxr {
 
 // Where the plugin is looked for: $VOXR_OPENVDB_PLUGIN when set (tests point it into the build tree, or at
-// nothing), else libvoxr_openvdb_peer.so beside the running executable. Empty when neither is known.
+// nothing), else the first libvoxr_openvdb_peer.so found beside the running executable, beside the shared
+// library this code is in (libvoxr.so in a program or the Python package), in its bin/ or in its ../bin/;
+// when none is there, the one beside the executable (for the message). Empty when nothing is known.
 std::filesystem::path openvdb_module_path();
 
 // Whether the plugin file is there (checked without loading it).

@@ -9,7 +9,7 @@
 #include "cl/cl_runtime.h"
 #include "util/clock.h"
 
-namespace voxr::cli {
+namespace voxr {
 
 template <typename Engine>
 struct PreparedRuntime {
@@ -35,4 +35,4 @@ std::future<PreparedRuntime<Engine>> prepare_in_background(const std::string& de
   });
 }
 
-}  // namespace voxr::cli
+}  // namespace voxr
