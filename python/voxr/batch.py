@@ -67,14 +67,9 @@ def plan_outputs(
     return plan
 
 
-def voxelize_one(
-    voxelize_file: Callable[..., Any], path: str, output: str, options: Dict[str, Any]
-) -> Dict[str, Any]:
-    """One manifest entry: voxelize_file(path, **options), save to output; voxr.Error and OSError become
-    the entry's "error" (the mesh's one-line message) instead of raising, so one bad mesh does not stop a
-    batch. Other exceptions (a wrong keyword, a bug) propagate."""
-    error = _error_type()
-    entry: Dict[str, Any] = {
+def empty_entry(path: str) -> Dict[str, Any]:
+    """A manifest entry for `path` before (or without) its run: no outputs, no error yet."""
+    return {
         "input": path,
         "outputs": [],
         "dims": None,
@@ -83,6 +78,16 @@ def voxelize_one(
         "warnings": [],
         "error": None,
     }
+
+
+def voxelize_one(
+    voxelize_file: Callable[..., Any], path: str, output: str, options: Dict[str, Any]
+) -> Dict[str, Any]:
+    """One manifest entry: voxelize_file(path, **options), save to output; voxr.Error and OSError become
+    the entry's "error" (the mesh's one-line message) instead of raising, so one bad mesh does not stop a
+    batch. Other exceptions (a wrong keyword, a bug) propagate."""
+    error = _error_type()
+    entry = empty_entry(path)
     t0 = time.perf_counter()
     try:
         grid = voxelize_file(path, **options)

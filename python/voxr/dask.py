@@ -21,7 +21,7 @@ except ImportError as e:  # pragma: no cover - depends on the environment
     ) from e
 
 from ._progress import Progress
-from .batch import PathLike, plan_outputs, voxelize_one, write_manifest
+from .batch import PathLike, empty_entry, plan_outputs, voxelize_one, write_manifest
 
 # Worker-local state: a worker is a process with its own OpenCL context(s). One voxr.Context per device,
 # created on the worker's first task; each has a lock, so a worker with several threads never runs two
@@ -75,16 +75,10 @@ def _voxr_error():
 
 
 def _failed_entry(path: str, message: str, worker: bool = True) -> Dict[str, Any]:
-    return {
-        "input": path,
-        "outputs": [],
-        "dims": None,
-        "voxels_set": None,
-        "ms": {"voxelize": None, "save": None},
-        "warnings": [],
-        "error": message,
-        "worker": _where() if worker else None,
-    }
+    entry = empty_entry(path)
+    entry["error"] = message
+    entry["worker"] = _where() if worker else None
+    return entry
 
 
 def voxelize_files(
