@@ -93,7 +93,7 @@ nb::ndarray<nb::numpy, const bool, nb::ndim<3>> dense_mask(VolumeHandle& self, b
       try {
         fresh = std::make_unique_for_overwrite<uint8_t[]>(n);
       } catch (const std::bad_alloc&) {
-        throw voxr::Error("voxr: a dense " + std::string(inside ? "inside" : "occupancy") + " array of the " +
+        throw voxr::Error("a dense " + std::string(inside ? "inside" : "occupancy") + " array of the " +
                           std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]) +
                           " grid needs " + std::to_string(n) +
                           " bytes, more than this process can allocate; use occupied_indices()");
