@@ -165,6 +165,23 @@ TEST(Cli, BadChannelModeAndExtension) {
 
 namespace {
 
+// --progress shows each step on stderr as one line with the seconds since the start, with -q and with stderr
+// not a terminal (a pipe here); without it, -q prints nothing.
+TEST(Cli, ProgressPrintsOneLinePerStep) {
+  const fs::path mesh = write_file("tetra_progress.obj", kTetra);
+  const fs::path out = scratch() / "progress.vti";
+  const Result r = run("voxelize " + mesh.string() + " --res 16 -q --progress -o " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("voxr: ["), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" s] reading " + mesh.string()), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" s] voxelizing: surface"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" s] writing " + out.string()), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+  const Result quiet = run("voxelize " + mesh.string() + " --res 16 -q -o " + out.string());
+  EXPECT_EQ(quiet.err, "");
+}
+
 TEST(Cli, MethodsAndTheirFlags) {
   const fs::path mesh = write_file("tetra5.obj", kTetra);
   for (const char* method : {"--method slice --mode center", "--method grid", "--method slicemap",
