@@ -279,6 +279,17 @@ TEST(RenderCli, EveryRefractionMethodRendersTheGlassSphere) {
   EXPECT_GT(rmse(read_image(none.string()), exact), 0.02) << "unrefracted glass must differ";
 }
 
+// --progress: one line per step on stderr with -q and a pipe (the default scene, a small image).
+TEST(RenderCli, ProgressPrintsOneLinePerStep) {
+  const fs::path out = scratch() / "progress.png";
+  const test::CliResult r = run_voxr("render --size 32x24 -q --progress -o " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find(" s] reading the default scene"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" s] rendering..."), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
 TEST(RenderCli, BadFlagsAndOutputsAreOneLineErrors) {
   struct Case {
     std::string args, needle;

@@ -6,7 +6,6 @@
 // --frames N renders N frames (render_job.h says how). An output name with a frame field (out_%04d.png,
 // frame_pattern.h) gets every frame; without one only the last frame is written.
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -19,6 +18,7 @@
 #include "cli/option_groups.h"
 #include "cli/option_groups_render.h"
 #include "cli/parse_args.h"
+#include "cli/progress_display.h"
 #include "eval/render_job.h"
 #include "io/atomic_file.h"
 #include "io/image_file.h"
@@ -37,6 +37,7 @@ struct RenderArgs : RenderJob {
   std::string size_text;  // empty: the scene camera's
   std::string report;
   bool quiet = false;
+  bool progress = false;  // --progress
 };
 
 int run_render(const RenderArgs& args) {
@@ -52,11 +53,11 @@ int run_render(const RenderArgs& args) {
   RenderJob job = args;
   job.size =
       args.size_text.empty() ? glm::uvec2(0) : parse_size(args.size_text, "--size");  // 0: the camera's
-  const bool tty = isatty(fileno(stderr)) && !args.quiet;
+  const ProgressDisplay progress(args.progress, args.quiet);
   RenderJobHooks hooks;
-  if (tty) hooks.status = [](const std::string& line) { fmt::print(stderr, "\r{:<60}\r{}", "", line); };
-  hooks.warning = [tty](const std::string& w) {
-    fmt::print(stderr, "{}voxr: warning: {}\n", tty ? "\r" : "", w);
+  if (progress.active()) hooks.status = [&progress](const std::string& line) { progress.show(line); };
+  hooks.warning = [&progress](const std::string& w) {
+    fmt::print(stderr, "{}voxr: warning: {}\n", progress.line_start(), w);
   };
   if (pattern)
     hooks.frame = [&](uint32_t f, const ImageRgba& image) { write_image(image, pattern->name(f)); };
@@ -76,7 +77,7 @@ int run_render(const RenderArgs& args) {
   if (!pattern) write_image(r.image, args.output);
   report["ms"]["process"] = ms_since(process_start);
   if (!args.report.empty()) write_file_atomically(args.report, report.dump(2) + "\n");
-  if (tty) fmt::print(stderr, "\r{:<60}\r", "");
+  progress.clear();
   if (!args.quiet) {
     fmt::print("input      {} ({} triangles)\n", r.source, r.triangles);
     fmt::print("device     {}\n", report["device"].get<std::string>());
@@ -271,6 +272,10 @@ Command add_render(CLI::App& app) {
       "OUT.error.png");
   add_device_option(*sub, args->device);
   add_report_options(*sub, args->report, args->profile, args->quiet, "times, grids, light grid and errors");
+  sub->add_flag(
+      "--progress", args->progress,
+      "show each step (reading, rendering, frame i/n) on stderr even with -q or when stderr is not a "
+      "terminal: one line per step with the seconds since the start");
   return {sub, [args, sub] {
             check_method_flags(*args, *sub);
             args->grids_given = sub->count("--res") + sub->count("--shadow-res") > 0;
