@@ -45,8 +45,8 @@ struct Context::State {
   VoxelVolume voxelize(const std::function<VoxelizeInput(VoxelizeOptions&)>& read,
                        const VoxelizeSettings& settings) {
     VoxelizeOptions options = make_voxelize_options(
-        {settings.method, settings.mode, settings.slicing, settings.channels, settings.solid, 16});
-    const GridLayout layout = parse_grid_layout(settings.layout);
+        {settings.method, settings.mode, settings.slicing, settings.channels, settings.solid});
+    const GridLayout layout = parse_grid_layout(settings.layout, "layout");
     const uint64_t budget =
         settings.memory_budget.empty() ? 0 : parse_memory_size(settings.memory_budget, "memory_budget");
     GridChoice choice{settings.resolution, std::nullopt, std::nullopt};

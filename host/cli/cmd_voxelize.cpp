@@ -5,7 +5,6 @@
 // built (or loaded from the program cache) on a second thread while the mesh is read, and the timed
 // voxelization starts after both.
 #include <fmt/format.h>
-#include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include <cctype>
@@ -25,7 +24,6 @@
 #include "cli/progress_display.h"
 #include "core/default_scene.h"
 #include "core/mesh_loader.h"
-#include "core/mesh_topology.h"
 #include "core/resolution_search.h"
 #include "core/scene.h"
 #include "io/atomic_file.h"
@@ -145,12 +143,10 @@ int run_voxelize(const VoxelizeArgs& args) {
   if (args.error_target && (args.res || !args.dims.empty()))
     fail("--error-target chooses the resolution; leave out --res and --dims");
   if (!args.report.empty()) check_output_path(args.report);
-  if (args.layout != "auto" && args.layout != "dense" && args.layout != "sparse")
-    fail("--layout '{}': expected auto, dense or sparse", args.layout);
-  const GridLayout layout = parse_grid_layout(args.layout);
+  const GridLayout layout = parse_grid_layout(args.layout, "--layout");
   const uint64_t memory_budget =
       args.memory_budget.empty() ? 0 : parse_memory_size(args.memory_budget, "--memory-budget");
-  if (args.layout == "sparse" && args.error_target)
+  if (layout == GridLayout::kSparse && args.error_target)
     fail("--error-target searches dense grids: leave out --layout sparse");
   const std::filesystem::path viewer = args.view ? find_viewer(args.output) : std::filesystem::path();
   VoxelizeOptions options = voxelize_options(args);

@@ -113,11 +113,11 @@ uint64_t parse_memory_size(const std::string& text, const std::string& what) {
   return uint64_t(bytes);
 }
 
-GridLayout parse_grid_layout(const std::string& name) {
+GridLayout parse_grid_layout(const std::string& name, const std::string& what) {
   if (name == "auto") return GridLayout::kAuto;
   if (name == "dense") return GridLayout::kDense;
   if (name == "sparse") return GridLayout::kSparse;
-  fail("layout '{}': expected auto, dense or sparse", name);
+  fail("{} '{}': expected auto, dense or sparse", what, name);
 }
 
 bool choose_sparse_layout(GridLayout layout, const GridSpec& grid, const VoxelizeOptions& options,

@@ -76,7 +76,8 @@ GridRequest choose_grid_request(GridRequest scene_request, const GridChoice& cho
 uint64_t parse_memory_size(const std::string& text, const std::string& what);
 
 enum class GridLayout { kAuto, kDense, kSparse };
-GridLayout parse_grid_layout(const std::string& name);  // "auto", "dense", "sparse"; throws voxr::Error
+// "auto", "dense", "sparse"; throws voxr::Error starting with `what` (the option's name) and the text.
+GridLayout parse_grid_layout(const std::string& name, const std::string& what);
 constexpr uint64_t kDenseLayoutLimitBytes = uint64_t(512) << 20;
 // True when `layout` runs `grid` in bricks. Throws voxr::Error when kSparse is asked for options it cannot
 // run.
